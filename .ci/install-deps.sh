@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs exactly the Debian 12 packages nao-soccer builds and tests with. Idempotent; run as root.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config git
+  libmujoco-dev          # MuJoCo 2.2.2: physics
+  libosmesa6-dev         # off-screen software OpenGL for the simulated cameras
+  libeigen3-dev          # geometry
+  libopencv-dev          # image I/O, debug drawing
+  libceres-dev           # least squares (calibration)
+  libmsgpack-cxx-dev     # LoLA packets
+  nlohmann-json3-dev     # JSON config and results
+  libtinyxml2-dev        # MJCF scene assembly (prefixing robot copies)
+  libgtest-dev           # tests
+  clang libclang-rt-14-dev  # libFuzzer targets of the LoLA and GameController parsers (.ci/fuzz.sh)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present" >&2
+  exit 0
+fi
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: missing ${missing[*]}; run as root" >&2; exit 1; }
+  sudo="sudo"
+fi
+echo "install-deps: installing ${missing[*]}" >&2
+$sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q
+$sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,264 @@
+// nao-soccer calibrate: the autonomous extrinsic camera calibration in the simulator (robot at
+// the calibration position, samples of the goal box, solve), true vs estimated offsets; and
+// the `eval calibration` target (many random cases) that apps/EvalCommand.cpp dispatches to.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <random>
+
+#include "apps/Commands.h"
+#include "apps/SimOptions.h"
+#include "perception/calibration/CalibrationStore.h"
+#include "robot/Error.h"
+#include "robot/Paths.h"
+#include "scenarios/Calibrate.h"
+
+namespace nao::cli {
+namespace {
+
+namespace cal = nao::calibration;
+constexpr double kDeg = M_PI / 180;
+
+nlohmann::json paramsDeg(const std::array<double, 6>& radians) {
+  nlohmann::json j;
+  for (int k = 0; k < 6; ++k) j[CameraCalibration::kNames[k]] = radians[k] / kDeg;
+  return j;
+}
+
+nlohmann::json paramsValue(const std::array<double, 6>& values) {
+  nlohmann::json j;
+  for (int k = 0; k < 6; ++k) j[CameraCalibration::kNames[k]] = values[k];
+  return j;
+}
+
+std::array<double, 6> difference(const CameraCalibration& a, const CameraCalibration& b) {
+  std::array<double, 6> d{};
+  const auto x = a.toArray(), y = b.toArray();
+  for (int k = 0; k < 6; ++k) d[k] = x[k] - y[k];
+  return d;
+}
+
+// The calibration looks at the goal box: a field file without one is bad input for it.
+FieldDimensions calibrationFieldFrom(const Args& args) {
+  FieldDimensions f = fieldFrom(args);
+  if (!f.hasGoalBox)
+    throw Error(args.str("field", dataPath("config/field_dimensions.json")),
+                "field.goalBoxAreaLength/goalBoxAreaWidth: missing, and the calibration looks at the goal box");
+  return f;
+}
+
+nlohmann::json runJson(const sim::CalibrationRunResult& r) {
+  nlohmann::json views = nlohmann::json::array();
+  for (const auto& v : r.views) {
+    nlohmann::json vj = {{"camera", cameraName(v.camera)},
+                         {"head_yaw_deg", v.headYawDeg},
+                         {"head_pitch_deg", v.headPitchDeg},
+                         {"accepted", v.accepted},
+                         {"reason", v.reason},
+                         {"source", v.source},
+                         {"extract_ms", v.extractMs}};
+    if (v.residuals)
+      vj["residuals"] = {{"angle1_deg", v.residuals->angle1Deg},
+                         {"angle2_deg", v.residuals->angle2Deg},
+                         {"depth_m", v.residuals->depthErrorM}};
+    views.push_back(vj);
+  }
+  nlohmann::json j = {{"true_deg", paramsDeg(r.truth.toArray())},
+                      {"estimated_deg", paramsDeg(r.estimate.toArray())},
+                      {"error_deg", paramsDeg(difference(r.estimate, r.truth))},
+                      {"reprojection_px", r.reprojectionPx},
+                      {"reprojection_before_px", r.reprojectionBeforePx},
+                      {"reprojection_points", r.reprojectionPoints},
+                      {"solve_s", r.solution.solveSeconds},
+                      {"converged", r.solution.solver.converged},
+                      {"iterations", r.solution.solver.iterations},
+                      {"solver_message", r.solution.solver.message},
+                      {"accepted", r.solution.accepted},
+                      {"refusal", r.solution.reason},
+                      {"residual_rms", {{"angle_deg", r.solution.rmsAngleDeg}, {"depth_m", r.solution.rmsDepthM}}},
+                      {"samples", r.samples},
+                      {"samples_used", r.solution.used.size()},
+                      {"views", views},
+                      {"head_id", r.headId},
+                      {"wall_s", r.wallSeconds}};
+  if (r.otherSolver) {
+    j["other_solver"] = {{"estimated_deg", paramsDeg(r.otherSolver->x)},
+                         {"converged", r.otherSolver->converged},
+                         {"solve_s", r.otherSolver->seconds},
+                         {"difference_deg", paramsDeg(difference(CameraCalibration::fromArray(r.otherSolver->x), r.estimate))}};
+  }
+  return j;
+}
+
+}  // namespace
+
+int calibrateCommand(const Argv& argv) {
+  auto options = commonOptions();
+  for (auto& o : simOptions()) options.push_back(o);
+  options.insert(options.end(),
+                 {{"solver", "gauss-newton|ceres", "least-squares solver (default gauss-newton)"},
+                  {"compare", "", "also solve the same samples with the other solver"},
+                  {"lines", "lsd|vision", "image line segments from OpenCV's LSD (default) or the vision pipeline first"},
+                  {"start", "left|right", "the side line the robot starts on (default right)"},
+                  {"placement-error", "DX,DY,DTHETA", "where the robot really stands vs the plan: m, m, deg (default 0,0,0)"},
+                  {"images", "DIR", "write every view annotated and the before/after pictures (paper Fig. 2)"},
+                  {"save", "", "store an accepted result for this robot's head id (refused above the residual threshold)"},
+                  {"store", "DIR", "calibration folder for --save (default config/calibration)"}});
+  Args args("calibrate", argv, options);
+  if (args.helpRequested()) {
+    std::cout << args.usage();
+    return 0;
+  }
+  sim::CalibrationRunOptions o;
+  o.field = calibrationFieldFrom(args);
+  o.robotModel = robotModelFrom(args);
+  o.lighting = lightingFrom(args);
+  o.miscalibration = miscalibrationFrom(args, args.seed());
+  o.seed = args.seed();
+  o.calibrator.solver = cal::parseSolver(args.str("solver", "gauss-newton"));
+  o.compareSolvers = args.has("compare");
+  const std::string lines = args.str("lines", "lsd");
+  if (lines != "lsd" && lines != "vision") throw Error("--lines", "must be lsd or vision, not '" + lines + "'");
+  o.lineSource = lines == "vision" ? cal::LineSource::Vision : cal::LineSource::Lsd;
+  const std::string start = args.str("start", "right");
+  if (start != "left" && start != "right") throw Error("--start", "must be left or right, not '" + start + "'");
+  o.side = start == "left" ? 1 : -1;
+  if (auto p = args.optionalList("placement-error", 3)) {
+    if (std::hypot((*p)[0], (*p)[1]) > 0.5 || std::abs((*p)[2]) > 30)
+      throw Error("--placement-error", "must stay within 0.5 m and 30 deg");
+    o.placementError = Eigen::Vector3d((*p)[0], (*p)[1], (*p)[2] * kDeg);
+  }
+  o.imagesDir = args.str("images", "");
+
+  const sim::CalibrationRunResult r = sim::runCalibration(o);
+  const auto err = difference(r.estimate, r.truth);
+  std::fprintf(stderr, "calibrate: %d of %zu views gave samples, %s %s in %.3f s, reprojection %.2f px (before %.2f px)\n",
+               r.samples, r.views.size(), cal::solverName(o.calibrator.solver),
+               r.solution.solver.converged ? "converged" : "did NOT converge", r.solution.solveSeconds, r.reprojectionPx,
+               r.reprojectionBeforePx);
+  for (int k = 0; k < 6; ++k)
+    std::fprintf(stderr, "  %-13s true %+7.3f  estimated %+7.3f  error %+7.3f deg\n", CameraCalibration::kNames[k],
+                 r.truth.toArray()[k] / kDeg, r.estimate.toArray()[k] / kDeg, err[k] / kDeg);
+  for (const auto& v : r.views)
+    if (!v.accepted)
+      std::fprintf(stderr, "  rejected %s yaw %+.0f: %s\n", cameraName(v.camera), v.headYawDeg, v.reason.c_str());
+
+  nlohmann::json j = runJson(r);
+  j["solver"] = cal::solverName(o.calibrator.solver);
+  j["lighting"] = lightingJson(o.lighting);
+  j["seed"] = o.seed;
+  j["files"] = r.imagesWritten;
+  if (args.has("save")) {
+    const cal::CalibrationStore store(args.str("store", ""));
+    cal::CalibrationRecord rec;
+    rec.offsets = r.estimate;
+    rec.rmsAngleDeg = r.solution.rmsAngleDeg;
+    rec.rmsDepthM = r.solution.rmsDepthM;
+    rec.samples = static_cast<int>(r.solution.used.size());
+    rec.solver = cal::solverName(o.calibrator.solver);
+    rec.converged = r.solution.solver.converged && r.solution.accepted;
+    const cal::SaveOutcome saved = store.save(r.headId, rec);
+    j["saved"] = saved.saved;
+    j["store_path"] = saved.path;
+    if (!saved.saved) j["save_refused"] = saved.reason;
+    std::fprintf(stderr, "calibrate: %s %s\n", saved.saved ? "saved" : "NOT saved:",
+                 saved.saved ? saved.path.c_str() : saved.reason.c_str());
+  }
+  if (args.has("json")) writeJson(args.str("json", "-"), j);
+  return r.solution.solver.converged && r.solution.accepted ? 0 : 1;
+}
+
+// eval calibration: --trials N random cases (offsets +-3 deg per parameter, placement error up
+// to 10 cm and 5 deg, a random lighting preset), each solved by both solvers.
+int evalCalibration(const Args& args) {
+  sim::CalibrationEvalOptions o;
+  o.field = calibrationFieldFrom(args);
+  o.trials = static_cast<int>(args.integer("trials", 100));
+  if (o.trials < 1 || o.trials > 100000) throw Error("--trials", "must be 1..100000");
+  o.seed = args.seed();
+  const std::string lighting = args.str("lighting", "sweep");
+  const std::string presets = dataPath("config/lighting.json");
+  o.lightings = lighting == "sweep" ? sim::Lighting::sweep(presets) : std::vector<sim::Lighting>{sim::Lighting::parse(lighting, presets)};
+  if (args.has("max-offset")) {
+    o.maxOffsetDeg = args.num("max-offset", 3);
+    if (!(o.maxOffsetDeg >= 0 && o.maxOffsetDeg <= 10)) throw Error("--max-offset", "must be 0..10 deg");
+  }
+  if (args.has("solver")) o.solver = cal::parseSolver(args.str("solver", "gauss-newton"));
+  o.progress = [](int done, int total) { progress("eval calibration", done, total); };
+  const sim::CalibrationEvalResult r = sim::evalCalibration(o);
+
+  nlohmann::json trials = nlohmann::json::array();
+  for (const auto& t : r.trialResults) {
+    nlohmann::json tj = runJson(t.run);
+    tj["lighting"] = t.lighting;
+    tj["placement_error"] = {t.placementError.x(), t.placementError.y(), t.placementError.z() / kDeg};
+    trials.push_back(tj);
+  }
+  nlohmann::json j = {{"trials", r.trials},
+                      {"converged", r.converged},
+                      {"accepted", r.accepted},
+                      {"median_abs_error_deg", paramsValue(r.medianAbsErrorDeg)},
+                      {"p95_abs_error_deg", paramsValue(r.p95AbsErrorDeg)},
+                      {"max_abs_error_deg", paramsValue(r.maxAbsErrorDeg)},
+                      {"reprojection_px", {{"median", r.reprojectionMedianPx}, {"p95", r.reprojectionP95Px}, {"max", r.reprojectionMaxPx}}},
+                      {"solver", cal::solverName(o.solver)},
+                      {"solver_agreement_max_deg", r.solverAgreementMaxDeg},
+                      {"solve_s", {{"median", r.solveSecondsMedian}, {"max", r.solveSecondsMax}, {"other_solver_max", r.otherSolveSecondsMax}}},
+                      {"max_offset_deg", o.maxOffsetDeg},
+                      {"placement_error", {{"max_m", o.maxPlacementError}, {"max_heading_deg", o.maxHeadingErrorDeg}}},
+                      {"seed", o.seed},
+                      {"per_trial", trials}};
+  std::fprintf(stderr, "eval calibration: %d trials, %d converged (both solvers), %d accepted; reprojection median %.2f px, max %.2f px; GN vs Ceres <= %.4f deg; solve <= %.3f s\n",
+               r.trials, r.converged, r.accepted, r.reprojectionMedianPx, r.reprojectionMaxPx, r.solverAgreementMaxDeg,
+               std::max(r.solveSecondsMax, r.otherSolveSecondsMax));
+  for (int k = 0; k < 6; ++k)
+    std::fprintf(stderr, "  %-13s median %.3f  p95 %.3f  max %.3f deg\n", CameraCalibration::kNames[k],
+                 r.medianAbsErrorDeg[k], r.p95AbsErrorDeg[k], r.maxAbsErrorDeg[k]);
+  writeJson(args.str("json", "-"), j);
+  return 0;
+}
+
+// bench calibration: the time of one calibration's parts -- image to sample per camera, and the
+// solve with each solver (the same samples, solved again and again; medians and maxima).
+int benchCalibration(const Args& args) {
+  sim::CalibrationRunOptions o;
+  o.field = calibrationFieldFrom(args);
+  o.robotModel = robotModelFrom(args);
+  o.lighting = lightingFrom(args);
+  o.seed = args.seed();
+  // Random offsets (+-3 deg, from the seed) unless given.
+  std::array<double, 6> offsets{};
+  std::mt19937_64 rng(o.seed * 7919 + 17);
+  std::uniform_real_distribution<double> u(-3, 3);
+  for (double& v : offsets) v = u(rng) * kDeg;
+  o.miscalibration = args.has("miscalibration") ? miscalibrationFrom(args, o.seed) : CameraCalibration::fromArray(offsets);
+  const int repeats = static_cast<int>(args.integer("repeats", 3));
+  if (repeats < 1) throw Error("--repeats", "must be positive");
+  std::fprintf(stderr, "bench calibration: collecting samples\n");
+  const sim::CalibrationRunResult r = sim::runCalibration(o);
+  if (r.solution.used.empty()) throw Error("calibration", "no samples: " + r.solution.reason);
+  std::vector<cal::CalibrationSample> used;
+  for (int i : r.solution.used) used.push_back(r.sampleData[i]);
+  cal::CalibratorOptions copts;
+  copts.cost.goalBoxDepth = o.field.goalBoxAreaLength;
+  const cal::CalibrationCost cost(used, copts.cost);
+  nlohmann::json solve;
+  for (cal::SolverKind kind : {cal::SolverKind::GaussNewton, cal::SolverKind::Ceres}) {
+    std::vector<double> ms;
+    for (int i = 0; i < 50 * repeats; ++i) ms.push_back(1000 * cal::solveWith(kind, cost, copts).seconds);
+    solve[cal::solverName(kind)] = {{"median_ms", sim::quantile(ms, 0.5)}, {"max_ms", sim::quantile(ms, 1.0)}, {"runs", ms.size()}};
+  }
+  std::vector<double> top, bottom;
+  for (const auto& v : r.views) (v.camera == CameraId::Top ? top : bottom).push_back(v.extractMs);
+  const nlohmann::json j = {{"solve", solve},
+                            {"extract_ms", {{"top", sim::quantile(top, 0.5)}, {"bottom", sim::quantile(bottom, 0.5)}}},
+                            {"samples", used.size()},
+                            {"views", r.views.size()},
+                            {"run_wall_s", r.wallSeconds},
+                            {"lighting", lightingJson(o.lighting)},
+                            {"seed", o.seed}};
+  writeJson(args.str("json", "-"), j);
+  return 0;
+}
+
+}  // namespace nao::cli

@@ -1,0 +1,124 @@
+// nao-soccer perceive: the vision pipeline on one PNG/JPEG or raw YUV422 image. The camera
+// matrix is that of a NAO standing with the given head angles (default 0, 0), nominal
+// calibration; the intrinsics follow the image's size with the NAO's field of view.
+#include <cmath>
+#include <iostream>
+
+#include "apps/Commands.h"
+#include "apps/SimOptions.h"
+#include "controllers/StandController.h"
+#include "perception/CameraModel.h"
+#include "perception/vision/Annotate.h"
+#include "perception/vision/VisionPipeline.h"
+#include "robot/Error.h"
+#include "sim/ImageIO.h"
+
+namespace nao::cli {
+namespace {
+
+nlohmann::json vec(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
+
+const char* className(RegionClass c) {
+  switch (c) {
+    case RegionClass::Field: return "field";
+    case RegionClass::White: return "white";
+    case RegionClass::Other: return "other";
+    default: return "unknown";
+  }
+}
+
+nlohmann::json resultJson(const VisionResult& r, const CameraImage& img, const std::string& path) {
+  nlohmann::json j;
+  j["image"] = {{"path", path}, {"width", img.width}, {"height", img.height}, {"camera", cameraName(img.camera)}};
+  const FieldColour& fc = r.regions.fieldColour;
+  j["field_colour"] = {{"valid", fc.valid}, {"hue_min", fc.hueMin}, {"hue_max", fc.hueMax}, {"sat_min", fc.satMin},
+                       {"y_min", fc.yMin},  {"y_max", fc.yMax},    {"mean_y", fc.meanY},   {"mean_s", fc.meanS}};
+  std::map<std::string, int> counts;
+  for (const auto* lines : {&r.regions.vertical, &r.regions.horizontal})
+    for (const auto& sl : *lines)
+      for (const auto& reg : sl.regions) counts[className(reg.cls)] += 1;
+  j["regions"] = {{"vertical_scan_lines", r.regions.vertical.size()},
+                  {"horizontal_scan_lines", r.regions.horizontal.size()},
+                  {"by_class", counts}};
+  nlohmann::json boundary = nlohmann::json::array();
+  for (const auto& p : r.boundary.points) boundary.push_back(vec(p));
+  j["field_boundary"] = {{"valid", r.boundary.valid}, {"points", boundary}};
+  nlohmann::json obstacles = nlohmann::json::array();
+  for (const auto& o : r.obstacles.obstacles)
+    obstacles.push_back({{"box", {o.left, o.top, o.right, o.bottom}}, {"foot_robot", vec(o.footRobot)}});
+  j["obstacles"] = obstacles;
+  nlohmann::json lines = nlohmann::json::array();
+  for (const auto& l : r.lines.lines) {
+    nlohmann::json spots = nlohmann::json::array();
+    for (const auto& s : l.spots) spots.push_back(vec(s));
+    lines.push_back({{"image", {vec(l.imageFrom), vec(l.imageTo)}}, {"robot", {vec(l.from), vec(l.to)}}, {"spots", spots}});
+  }
+  j["lines"] = lines;
+  j["circle"] = {{"found", r.lines.circle.found}, {"centre_robot", vec(r.lines.circle.centre)}, {"radius", r.lines.circle.radius}};
+  nlohmann::json xs = nlohmann::json::array();
+  for (const auto& x : r.lines.intersections) {
+    const char* t = x.type == LinesPercept::Intersection::Type::L ? "L" : x.type == LinesPercept::Intersection::Type::T ? "T" : "X";
+    xs.push_back({{"type", t}, {"robot", vec(x.position)}, {"image", vec(x.image)}, {"lines", {x.line1, x.line2}}});
+  }
+  j["intersections"] = xs;
+  j["penalty_mark"] = r.lines.penaltyMark ? nlohmann::json{{"robot", vec(*r.lines.penaltyMark)}, {"image", vec(r.penaltyMarkImage)}}
+                                          : nlohmann::json(nullptr);
+  const auto& g = r.lines.goalBoxSide;
+  j["goal_box_side"] = {{"found", g.found}, {"short_line", g.shortLine}, {"long_lines", {g.longLine1, g.longLine2}}};
+  const BallPercept& b = r.ball;
+  j["ball"] = {{"seen", b.seen},
+               {"image", vec(b.image)},
+               {"radius_px", b.radiusPx},
+               {"robot", vec(b.position)},
+               {"covariance", {{b.covariance(0, 0), b.covariance(0, 1)}, {b.covariance(1, 0), b.covariance(1, 1)}}},
+               {"confidence", b.confidence}};
+  j["stage_ms"] = r.stageMs;
+  return j;
+}
+
+}  // namespace
+
+int perceiveCommand(const Argv& argv) {
+  auto options = commonOptions();
+  options.insert(options.end(),
+                 {{"camera", "top|bottom", "which camera took the image (default top)"},
+                  {"head", "YAW,PITCH", "head angles in deg for the camera matrix (default 0,0)"},
+                  {"size", "WxH", "size of a raw YUV422 file (default: inferred from its length)"},
+                  {"out", "FILE.png", "write the annotated image"},
+                  {"scale", "N", "scale of the annotated image (default 1)"}});
+  Args args("perceive", argv, options, 1);
+  if (args.helpRequested()) {
+    std::cout << "usage: nao-soccer perceive IMAGE [options]   (PNG, JPEG, or raw YUYV .yuv/.yuyv/.raw)\n" << args.usage();
+    return 0;
+  }
+  if (args.positional().empty()) throw Error("perceive", "needs an image file");
+  const std::string path = args.positional()[0];
+  const std::string cam = args.str("camera", "top");
+  if (cam != "top" && cam != "bottom") throw Error("--camera", "must be top or bottom, not '" + cam + "'");
+  const CameraId camera = cam == "top" ? CameraId::Top : CameraId::Bottom;
+  int w = 0, h = 0;
+  if (args.has("size")) {
+    const std::string s = args.str("size", "");
+    if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0 || w % 2)
+      throw Error("--size", "must be WxH with an even width, not '" + s + "'");
+  }
+  const auto head = args.optionalList("head", 2).value_or(std::vector<double>{0, 0});
+  const int scale = static_cast<int>(args.integer("scale", 1));
+  if (scale < 1 || scale > 8) throw Error("--scale", "must be 1..8");
+  const VisionGeometry geometry = VisionGeometry::from(fieldFrom(args));
+
+  const CameraImage img = sim::readImage(path, w, h, camera);
+  JointArray joints = StandController::standPosture();
+  joints[HeadYaw] = head[0] * M_PI / 180;
+  joints[HeadPitch] = head[1] * M_PI / 180;
+  const CameraIntrinsics in = CameraIntrinsics::fromFovY(img.width, img.height);
+  const CameraMatrix cm = computeCameraMatrix(joints, Eigen::Vector2d::Zero(), camera, CameraCalibration{}, in);
+  const VisionResult r = runVision(img, cm, geometry);
+  if (args.has("out")) sim::writePng(args.str("out", ""), annotateVision(sim::rgbFromCameraImage(img), r, cm, scale));
+  nlohmann::json j = resultJson(r, img, path);
+  j["head_deg"] = {head[0], head[1]};
+  writeJson(args.str("json", "-"), j);
+  return 0;
+}
+
+}  // namespace nao::cli

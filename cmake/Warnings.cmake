@@ -1,0 +1,19 @@
+# -Wall -Wextra everywhere; NAO_WERROR turns warnings into errors (CI sets it).
+option(NAO_WERROR "Treat warnings as errors" OFF)
+function(nao_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local)
+  if(NAO_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# A library of all .cpp files below the calling folder (an empty one still configures).
+function(nao_library name)
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
+  if(NOT sources)
+    set(sources ${CMAKE_CURRENT_BINARY_DIR}/${name}_empty.cpp)
+    file(WRITE ${sources} "// ${name} has no sources yet\n")
+  endif()
+  add_library(${name} STATIC ${sources})
+  nao_warnings(${name})
+endfunction()

@@ -1,0 +1,292 @@
+#include "controllers/MotionEngine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "controllers/Kinematics.h"
+#include "robot/RobotDimensions.h"
+
+namespace nao {
+
+const char* motionTypeName(MotionType type) {
+  switch (type) {
+    case MotionType::Stand: return "stand";
+    case MotionType::Walk: return "walk";
+    case MotionType::WalkTo: return "walk_to";
+    case MotionType::Kick: return "kick";
+    case MotionType::GetUp: return "get_up";
+    case MotionType::SitDown: return "sit_down";
+    case MotionType::PlayDead: return "play_dead";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kCycle = 0.012;
+
+double smoothstep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+
+// Crouching: torso low above the feet, arms down, as a NAO sits before its stiffness goes off.
+JointArray sitPosture(const JointArray& arms) {
+  JointArray j = arms;
+  Eigen::Isometry3d l = Eigen::Isometry3d::Identity(), r = Eigen::Isometry3d::Identity();
+  l.translation() = Eigen::Vector3d(-0.01, dims::kHipY, -0.135);
+  r.translation() = Eigen::Vector3d(-0.01, -dims::kHipY, -0.135);
+  legsIK(l, r, j);
+  j[HeadYaw] = 0;
+  j[HeadPitch] = 0;
+  return j;
+}
+
+// While falling: knees bent, arms forward (falling forwards) or along the body (backwards),
+// head turned away from the impact.
+JointArray safeFallPosture(const JointArray& now, FallDirection direction) {
+  JointArray j = now;
+  const bool front = direction == FallDirection::Front;
+  j[HeadYaw] = 0;
+  j[HeadPitch] = front ? -0.5 : 0.4;
+  j[LShoulderPitch] = j[RShoulderPitch] = front ? 0.1 : 1.6;
+  j[LShoulderRoll] = 0.3;
+  j[RShoulderRoll] = -0.3;
+  j[LElbowYaw] = -1.5;
+  j[RElbowYaw] = 1.5;
+  j[LElbowRoll] = front ? -0.6 : -0.1;
+  j[RElbowRoll] = front ? 0.6 : 0.1;
+  j[LHipPitch] = j[RHipPitch] = -0.6;
+  j[LKneePitch] = j[RKneePitch] = 1.2;
+  j[LAnklePitch] = j[RAnklePitch] = -0.6;
+  j[LHipRoll] = j[RHipRoll] = 0;
+  j[LAnkleRoll] = j[RAnkleRoll] = 0;
+  j[LHipYawPitch] = 0;
+  return j;
+}
+
+}  // namespace
+
+MotionEngine::MotionEngine(const Params& params)
+    : params_(params), walk_(params.walk), kick_(params.kick), getUp_(params.getUp) {}
+
+// The robot pose (robot frame) from which a straight kick with the chosen foot sends the ball
+// in `direction`: heading = direction, the ball at Kick::ballTarget in front of the foot.
+Pose2 MotionEngine::kickPose(const Eigen::Vector2d& ball, double direction, bool leftFoot) const {
+  const Eigen::Vector2d target = Kick::ballTarget(leftFoot, params_.kick);
+  const double c = std::cos(direction), s = std::sin(direction);
+  return {ball.x() - (c * target.x() - s * target.y()), ball.y() - (s * target.x() + c * target.y()), direction};
+}
+
+bool MotionEngine::wantsFeet(const MotionRequest& r) const {
+  return r.motion == MotionType::Stand || r.motion == MotionType::Walk || r.motion == MotionType::WalkTo ||
+         r.motion == MotionType::Kick || r.motion == MotionType::GetUp;
+}
+
+void MotionEngine::enter(State state, const SensorFrame& frame) {
+  state_ = state;
+  stateStart_ = frame.time;
+  from_ = frame.joints.position;
+}
+
+JointRequest MotionEngine::interpolate(const SensorFrame& frame, const JointArray& goal, double duration, double stiffness) {
+  JointRequest out;
+  const double s = duration > 0 ? smoothstep((frame.time - stateStart_) / duration) : 1.0;
+  for (int j = 0; j < NumJoints; ++j) out.position[j] = from_[j] + s * (goal[j] - from_[j]);
+  out.stiffness.fill(stiffness);
+  return out;
+}
+
+void MotionEngine::applyHead(JointRequest& out, const HeadJointRequest& head) const {
+  out.position[HeadYaw] = clampToLimits(HeadYaw, head.yaw);
+  out.position[HeadPitch] = clampToLimits(HeadPitch, head.pitch);
+  out.stiffness[HeadYaw] = out.stiffness[HeadPitch] = head.stiffness;
+}
+
+// WalkTo: the remaining offset to the target in the odometry frame, turned into a walk speed.
+// Far away the robot faces its path (forward is the fastest) and slows down in time to stop
+// (v <= sqrt(2 a d)); near, it turns to the target's heading and steps there
+// omnidirectionally and slowly, so that the last steps are small and it stops on the spot.
+Pose2 MotionEngine::walkToSpeed(const Pose2& target, double positionTolerance, double angleTolerance) {
+  walkTarget_ = target;
+  const Pose2 rel = odometry_.pose.inverse() * walkTarget_;
+  const double distance = std::hypot(rel.x, rel.y);
+  const Params& p = params_;
+  if (distance < positionTolerance && std::abs(rel.theta) < angleTolerance) walkToStopped_ = true;
+  if (walkToStopped_ && distance < 2.5 * positionTolerance && std::abs(rel.theta) < 2 * angleTolerance) return {};
+  walkToStopped_ = false;
+  // Far: face the path. Near: the target's heading. In between a blend.
+  const double pathAngle = std::atan2(rel.y, rel.x);
+  const double far = std::clamp((distance - p.walkToNearDistance) / p.walkToNearDistance, 0.0, 1.0);
+  Pose2 farSpeed, nearSpeed;
+  farSpeed.theta = std::clamp(p.walkToTurnGain * pathAngle, -p.walkToMaxTurn, p.walkToMaxTurn);
+  const double facing = std::max(0.0, std::cos(pathAngle));
+  const double brake = std::sqrt(2 * p.walkToDeceleration * std::max(0.0, distance - 0.5 * p.walkToNearDistance));
+  farSpeed.x = std::min(walk_.params().maxForward, brake) * facing * facing;
+  farSpeed.y = std::clamp(p.walkToGain * rel.y, -0.05, 0.05);
+  nearSpeed.theta = std::clamp(p.walkToTurnGain * rel.theta, -p.walkToMaxTurn, p.walkToMaxTurn);
+  nearSpeed.x = std::clamp(p.walkToGain * rel.x, -p.walkToNearSpeed, p.walkToNearSpeed);
+  nearSpeed.y = std::clamp(p.walkToGain * rel.y, -p.walkToNearSpeed, p.walkToNearSpeed);
+  const Pose2 speed(far * farSpeed.x + (1 - far) * nearSpeed.x, far * farSpeed.y + (1 - far) * nearSpeed.y,
+                    far * farSpeed.theta + (1 - far) * nearSpeed.theta);
+  return walk_.clipSpeed(speed);
+}
+
+JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fall, const MotionRequest& request,
+                                  const HeadJointRequest& head) {
+  info_.motion = request.motion;
+  info_.kickDone = request.kickId == doneKickId_;
+  JointRequest out;
+
+  // Falling or fallen: drop whatever runs (a running get-up handles its own tilt).
+  const bool down = fall.falling || fall.fallen;
+  const bool lyingStates = state_ == State::Falling || state_ == State::Lying || state_ == State::GetUp ||
+                           state_ == State::PlayDead || state_ == State::Sitting || state_ == State::SitDown;
+  if (down && !lyingStates) enter(fall.fallen ? State::Lying : State::Falling, frame);
+
+  switch (state_) {
+    case State::Start:
+      enter(State::Transition, frame);
+      [[fallthrough]];
+    case State::Transition: {
+      out = interpolate(frame, walk_.standPosture(), params_.transitionTime, 1.0);
+      if (frame.time - stateStart_ >= params_.transitionTime) {
+        walk_.reset(frame);
+        state_ = State::Walk;
+      }
+      break;
+    }
+    case State::Walk: {
+      Pose2 speed;
+      bool stop = true;
+      switch (request.motion) {
+        case MotionType::Walk: speed = request.walkSpeed; stop = false; break;
+        case MotionType::WalkTo:
+          if (request.walkTargetId != walkTargetId_) {
+            walkTargetId_ = request.walkTargetId;
+            walkTarget_ = odometry_.pose * request.walkTarget;
+            walkToStopped_ = false;
+          }
+          speed = walkToSpeed(walkTarget_, params_.walkToPositionTolerance, params_.walkToAngleTolerance);
+          stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
+          if (std::getenv("NAO_WALKTO_TRACE") && static_cast<int>(frame.time / kCycle) % 8 == 0) {
+            const Pose2 rel = odometry_.pose.inverse() * walkTarget_;
+            std::fprintf(stderr, "t=%.2f rel %.3f %.3f %.1f speed %.3f %.3f %.1f phase %d\n", frame.time, rel.x, rel.y, rel.theta * 57.3,
+                         speed.x, speed.y, speed.theta * 57.3, static_cast<int>(walk_.phase()));
+          }
+          break;
+        case MotionType::Kick:
+          if (request.kickId != doneKickId_) {
+            if (request.kickId != kickId_) {
+              kickId_ = request.kickId;
+              kickLeft_ = request.ballPosition.y() >= 0;
+              walkToStopped_ = false;
+            }
+            // The kick pose: facing the kick direction, the ball in front of the kicking foot.
+            const Pose2 pose = kickPose(request.ballPosition, request.kickDirection, kickLeft_);
+            speed = walkToSpeed(odometry_.pose * pose, params_.kickPositionTolerance, params_.kickAngleTolerance);
+            stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
+          }
+          break;
+        default: break;
+      }
+      out = walk_.update(frame, speed, stop);
+      if (walk_.standing()) {
+        if (request.motion == MotionType::SitDown) {
+          enter(State::SitDown, frame);
+        } else if (request.motion == MotionType::PlayDead) {
+          enter(State::PlayDead, frame);
+        } else if (request.motion == MotionType::Kick && request.kickId == kickId_ && request.kickId != doneKickId_ &&
+                   walkToStopped_) {
+          kick_.start(frame, walk_.standPosture(), request.ballPosition, request.kickDirection);
+          enter(State::Kick, frame);
+        }
+      }
+      break;
+    }
+    case State::Kick: {
+      out = kick_.update(frame);
+      if (kick_.done()) {
+        doneKickId_ = kickId_;
+        walk_.reset(frame);
+        state_ = State::Walk;
+        stateStart_ = frame.time;
+      }
+      break;
+    }
+    case State::Falling: {
+      out.position = safeFallPosture(frame.joints.position, fall.direction);
+      out.stiffness.fill(0.5);
+      if (fall.fallen) enter(State::Lying, frame);
+      break;
+    }
+    case State::Lying: {
+      out.position = frame.joints.position;
+      out.stiffness.fill(0.1);
+      const bool settled = frame.time - stateStart_ > 0.5 && frame.inertial.gyroscope.norm() < 0.3;
+      if (settled && wantsFeet(request)) {
+        getUp_.start(frame, fall.direction, walk_.standPosture());
+        enter(State::GetUp, frame);
+        ++info_.getUpAttempts;
+      } else if (!fall.fallen && !fall.falling && settled) {
+        enter(State::Transition, frame);  // upright after all (e.g. caught by a wall)
+      }
+      break;
+    }
+    case State::GetUp: {
+      out = getUp_.update(frame);
+      if (getUp_.done()) {
+        walk_.reset(frame);
+        enter(State::Walk, frame);
+      } else if (getUp_.failed()) {
+        enter(State::Lying, frame);
+      }
+      break;
+    }
+    case State::SitDown: {
+      out = interpolate(frame, sitPosture(walk_.standPosture()), params_.sitDownTime, 0.8);
+      if (frame.time - stateStart_ >= params_.sitDownTime) enter(State::Sitting, frame);
+      break;
+    }
+    case State::Sitting: {
+      out.position = frame.joints.position;
+      out.stiffness.fill(0.15);
+      if (wantsFeet(request)) {
+        out.stiffness.fill(1.0);
+        enter(State::Transition, frame);
+        params_.transitionTime = std::max(params_.transitionTime, 0.0);
+      }
+      break;
+    }
+    case State::PlayDead: {
+      out.position = frame.joints.position;
+      out.stiffness.fill(params_.playDeadStiffness);
+      if (request.motion != MotionType::PlayDead) {
+        if (fall.fallen) enter(State::Lying, frame);
+        else if (request.motion == MotionType::SitDown) enter(State::SitDown, frame);
+        else enter(State::Transition, frame);
+      }
+      break;
+    }
+  }
+
+  const bool headFree = state_ == State::Walk || state_ == State::Transition || state_ == State::Kick ||
+                        state_ == State::Sitting || state_ == State::SitDown;
+  if (headFree) applyHead(out, head);
+
+  // Odometry: the walk's kinematic odometry while on the feet; the gyro's yaw otherwise.
+  walk_.updateOdometry(frame, !(state_ == State::Walk || state_ == State::Transition || state_ == State::Kick));
+  odometry_.pose = walk_.odometry();
+
+  info_.stable = state_ == State::Walk;
+  info_.walkSpeed = state_ == State::Walk ? walk_.appliedSpeed() : Pose2();
+  info_.upright = !(state_ == State::Falling || state_ == State::Lying || state_ == State::GetUp);
+  info_.walkToReached = request.motion == MotionType::WalkTo && walkToStopped_ && walk_.standing();
+  info_.kickDone = request.kickId == doneKickId_;
+  lastOutput_ = out.position;
+  return out;
+}
+
+}  // namespace nao

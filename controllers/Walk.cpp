@@ -1,0 +1,512 @@
+#include "controllers/Walk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "controllers/Kinematics.h"
+#include "controllers/StandController.h"
+#include "robot/ForwardKinematics.h"
+#include "robot/RobotDimensions.h"
+
+namespace nao {
+
+using Eigen::Isometry3d;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kNominalCycle = 0.012;
+constexpr int kPreviewSteps = 4;
+
+double smooth5(double s) {
+  s = std::clamp(s, 0.0, 1.0);
+  return s * s * s * (10 - 15 * s + 6 * s * s);
+}
+
+Isometry3d footIsometry(const Pose2& p, double z) {
+  Isometry3d t = Isometry3d::Identity();
+  t.linear() = rotZ(p.theta);
+  t.translation() = Vector3d(p.x, p.y, z);
+  return t;
+}
+
+double towards(double value, double target, double maxDelta) {
+  return value + std::clamp(target - value, -maxDelta, maxDelta);
+}
+
+double meanAngle(double a, double b) { return Pose2::wrap(a + Pose2::wrap(b - a) / 2); }
+
+// The rate of the torso's yaw (ZYX Euler angles, the robot frame's heading) from the body
+// rates: psi' = (q sin(roll) + r cos(roll)) / cos(pitch). Not the vertical component of the
+// angular velocity: with the torso rocking in roll and pitch each step, that one accumulates a
+// drift (the rocking's enclosed area) the heading does not have.
+double yawRateOf(const SensorFrame& frame) {
+  const double roll = frame.inertial.angle.x(), pitch = frame.inertial.angle.y();
+  const Eigen::Vector3d& w = frame.inertial.gyroscope;
+  return (w.y() * std::sin(roll) + w.z() * std::cos(roll)) / std::cos(pitch);
+}
+
+}  // namespace
+
+Walk::Walk(const Params& params) : params_(params) {
+  const JointArray stand = standPosture();
+  arms_ = stand;
+  comHeight_ = params_.torsoHeight + centerOfMass(stand).z();
+  omega_ = std::sqrt(kGravity / comHeight_);
+  lastCommand_ = stand;
+}
+
+JointArray Walk::standPosture() const {
+  JointArray joints = StandController::standPosture();
+  joints[LShoulderRoll] = 0.15;
+  joints[RShoulderRoll] = -0.15;
+  // Feet under the hips at footSpacing; the torso shifted so that the COM is above their midpoint.
+  Vector2d torso = Vector2d::Zero();
+  for (int i = 0; i < 8; ++i) {
+    Isometry3d t = Isometry3d::Identity();
+    t.translation() = Vector3d(torso.x(), torso.y(), params_.torsoHeight);
+    t.linear() = rotY(params_.torsoPitch);
+    const Isometry3d inv = t.inverse();
+    legsIK(inv * footIsometry({0, params_.footSpacing / 2, 0}, 0), inv * footIsometry({0, -params_.footSpacing / 2, 0}, 0), joints);
+    const Vector3d com = t * centerOfMass(joints);
+    torso -= com.head<2>();
+  }
+  return joints;
+}
+
+Pose2 Walk::clipSpeed(const Pose2& s) const {
+  Pose2 out;
+  out.x = std::clamp(s.x, -params_.maxBackward, params_.maxForward);
+  out.y = std::clamp(s.y, -params_.maxSide, params_.maxSide);
+  out.theta = std::clamp(s.theta, -params_.maxTurn, params_.maxTurn);
+  // Combined speeds share the step: keep (x, y, theta) inside the ellipsoid of the limits.
+  const double ex = out.x / (out.x >= 0 ? params_.maxForward : params_.maxBackward);
+  const double ey = out.y / params_.maxSide, et = out.theta / params_.maxTurn;
+  const double n = std::sqrt(ex * ex + ey * ey + et * et);
+  if (n > 1) out = {out.x / n, out.y / n, out.theta / n};
+  return out;
+}
+
+void Walk::reset(const SensorFrame& frame) {
+  phase_ = Phase::Standing;
+  left_ = {0, params_.footSpacing / 2, 0};
+  right_ = {0, -params_.footSpacing / 2, 0};
+  support_ = right_;
+  c_ = Vector2d::Zero();
+  cd_ = Vector2d::Zero();
+  zmp_ = Vector2d::Zero();
+  torsoXY_ = Vector2d::Zero();
+  speed_ = {};
+  t_ = 0;
+  lastTime_ = frame.time;
+  haveRelative_ = false;
+  haveMeasurement_ = false;
+  havePreviousIK_ = false;
+  gyroFiltered_.setZero();
+  stopRequested_ = false;
+  yawError_ = 0;
+  headingCorrection_ = 0;
+}
+
+Vector2d Walk::zmpOf(const Pose2& foot, bool left) const {
+  return foot * Vector2d(params_.zmpX, left ? -params_.zmpYInside : params_.zmpYInside);
+}
+
+// Where the swing foot lands for a speed: the feet's midpoint moves by the step's share of the
+// speed; sideways and turning steps open with the foot on that side and close with the other.
+Pose2 Walk::nominalTarget(const Pose2& support, bool swingLeft, const Pose2& speed) const {
+  const double w = swingLeft ? 1.0 : -1.0;
+  const double T = params_.stepDuration;
+  const Pose2 mid = support * Pose2(0, w * params_.footSpacing / 2, 0);
+  const double dx = speed.x * T;
+  const double dy = speed.y * w > 0 ? 2 * speed.y * T : 0.0;
+  const double dtheta = speed.theta * w > 0 ? 2 * speed.theta * T : 0.0;
+  const Pose2 target = mid * Pose2(0, 0, dtheta) * Pose2(dx, dy, 0) * Pose2(0, w * params_.footSpacing / 2, 0);
+  return clipTarget(support, swingLeft, target);
+}
+
+Pose2 Walk::clipTarget(const Pose2& support, bool swingLeft, const Pose2& target) const {
+  const double w = swingLeft ? 1.0 : -1.0;
+  Pose2 rel = support.inverse() * target;
+  rel.x = std::clamp(rel.x, -params_.maxStepBackward, params_.maxStepForward);
+  const double lateral = std::clamp(w * rel.y, params_.footSpacing - params_.maxStepInward,
+                                    params_.footSpacing + params_.maxStepOutward);
+  rel.y = w * lateral;
+  // Toes may open (swing foot turned outwards) more than they close.
+  rel.theta = w * std::clamp(w * rel.theta, -0.25, 0.8);
+  return support * rel;
+}
+
+// The ZMP of a step moves through the support sole from heel to toe (or across it) with the
+// COM, which travels over the sole by half the distance between the feet before and after:
+// less horizontal force is needed, the gait is smoother at speed.
+Walk::StepZmp Walk::stepZmp(const Pose2& support, bool supportLeft, const Pose2& from, const Pose2& to) const {
+  const Vector2d ref = zmpOf(support, supportLeft);
+  const Vector2d travel = (to.translation() - from.translation()) / 2;
+  const double c = std::cos(support.theta), s = std::sin(support.theta);
+  Vector2d local(c * travel.x() + s * travel.y(), -s * travel.x() + c * travel.y());
+  local.x() = std::clamp(params_.zmpTravelX * local.x(), -params_.maxZmpTravelX, params_.maxZmpTravelX);
+  local.y() = std::clamp(params_.zmpTravelY * local.y(), -params_.maxZmpTravelY, params_.maxZmpTravelY);
+  const Vector2d w(c * local.x() - s * local.y(), s * local.x() + c * local.y());
+  return {ref - w / 2, ref + w / 2};
+}
+
+Vector2d Walk::zmpAt(const StepZmp& z, double t) const {
+  return z.p0 + std::clamp(t / params_.stepDuration, 0.0, 1.0) * (z.p1 - z.p0);
+}
+
+// DCM with a ZMP moving at a constant rate pd: xi(t) = p(t) + pd/omega + (xi0 - p0 - pd/omega) e^(omega t).
+Vector2d Walk::dcmAtStart(const StepZmp& z, const Vector2d& xiEnd) const {
+  const double T = params_.stepDuration;
+  const Vector2d lead = (z.p1 - z.p0) / (T * omega_);
+  return z.p0 + lead + (xiEnd - z.p1 - lead) * std::exp(-omega_ * T);
+}
+
+Vector2d Walk::dcmAtEnd(const StepZmp& z, const Vector2d& xi, double t) const {
+  const double T = params_.stepDuration;
+  const Vector2d lead = (z.p1 - z.p0) / (T * omega_);
+  return z.p1 + lead + (xi - zmpAt(z, t) - lead) * std::exp(omega_ * std::max(0.0, T - t));
+}
+
+// The DCM's offset from the landing step's first ZMP at touch-down in the gait that continues
+// with the current speed: the backward recursion xi_start(k) = f(xi_end(k)) over the next
+// footsteps (its end condition fades with e^(-omega T N)).
+Vector2d Walk::periodicOffset(const Pose2& support, bool supportLeft, const Pose2& target) const {
+  std::array<Pose2, kPreviewSteps + 2> feet;
+  feet[0] = support;
+  feet[1] = target;
+  bool left = !supportLeft;  // the side of feet[1]
+  for (int k = 2; k < kPreviewSteps + 2; ++k) {
+    left = !left;
+    feet[k] = nominalTarget(feet[k - 1], left, speed_);
+  }
+  // feet[k] (k >= 1) supports step k; its side alternates starting with !supportLeft.
+  std::array<StepZmp, kPreviewSteps + 1> zmp;
+  for (int k = 1; k <= kPreviewSteps; ++k) {
+    const bool sideLeft = (k % 2 == 1) ? !supportLeft : supportLeft;
+    zmp[k] = stepZmp(feet[k], sideLeft, feet[k - 1], feet[k + 1]);
+  }
+  Vector2d xi = zmp[kPreviewSteps].p1;
+  for (int k = kPreviewSteps; k >= 1; --k) xi = dcmAtStart(zmp[k], xi);
+  return xi - zmp[1].p0;
+}
+
+void Walk::updateSpeed(const Pose2& request) {
+  const Pose2 goal = stopRequested_ ? Pose2() : clipSpeed(request);
+  const double T = params_.stepDuration;
+  speed_.x = towards(speed_.x, goal.x, params_.accelForward * T);
+  speed_.y = towards(speed_.y, goal.y, params_.accelSide * T);
+  speed_.theta = towards(speed_.theta, goal.theta, params_.accelTurn * T);
+}
+
+void Walk::startStep(double) {
+  t_ = 0;
+  stepDuration_ = params_.stepDuration;
+  support_ = supportLeft_ ? left_ : right_;
+  swingStart_ = supportLeft_ ? right_ : left_;
+  headingCorrection_ = std::clamp(-params_.headingGain * yawError_, -params_.maxHeadingCorrection, params_.maxHeadingCorrection);
+  swingTarget_ = nominalTarget(support_, !supportLeft_, speed_);
+  swingTarget_.theta = Pose2::wrap(swingTarget_.theta + headingCorrection_);
+  ++steps_;
+}
+
+bool Walk::closedFeet() const {
+  const Pose2 rel = right_.inverse() * left_;
+  return std::abs(rel.x) < 0.004 && std::abs(rel.y - params_.footSpacing) < 0.004 && std::abs(rel.theta) < 0.03;
+}
+
+void Walk::integrateModel(const Vector2d& zmp, double dt) {
+  // Exact LIPM over dt with the ZMP held.
+  const double ch = std::cosh(omega_ * dt), sh = std::sinh(omega_ * dt);
+  const Vector2d c = zmp + (c_ - zmp) * ch + cd_ / omega_ * sh;
+  const Vector2d cd = (c_ - zmp) * omega_ * sh + cd_ * ch;
+  c_ = c;
+  cd_ = cd;
+  zmp_ = zmp;
+}
+
+JointArray Walk::solve(const Foot3& left, const Foot3& right, double torsoYaw, const Eigen::Matrix3d& leftCorrection,
+                       const Eigen::Matrix3d& rightCorrection, int swingSide) {
+  JointArray joints = arms_;
+  for (int iter = 0; iter < 3; ++iter) {
+    Isometry3d torso = Isometry3d::Identity();
+    torso.translation() = Vector3d(torsoXY_.x(), torsoXY_.y(), params_.torsoHeight);
+    torso.linear() = rotZ(torsoYaw) * rotY(params_.torsoPitch);
+    const Isometry3d inv = torso.inverse();
+    Isometry3d l = inv * footIsometry(left.pose, left.z), r = inv * footIsometry(right.pose, right.z);
+    // Corrections (torso frame): a swing foot turns about the support sole, a support foot about itself.
+    if (swingSide == 1) l.translation() = r.translation() + leftCorrection * (l.translation() - r.translation());
+    if (swingSide == -1) r.translation() = l.translation() + rightCorrection * (r.translation() - l.translation());
+    l.linear() = leftCorrection * l.linear();
+    r.linear() = rightCorrection * r.linear();
+    legsIK(l, r, joints);
+    torso_ = torso;
+    if (iter == 2) break;
+    const Vector3d com = torso * centerOfMass(joints);
+    torsoXY_ += c_ - com.head<2>();
+  }
+  return joints;
+}
+
+JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool stop) {
+  const double dt = lastTime_ < 0 ? kNominalCycle : std::clamp(frame.time - lastTime_, 0.0, 0.05);
+  lastTime_ = frame.time;
+  const bool wantMove = !stop && (std::abs(request.x) > 1e-4 || std::abs(request.y) > 1e-4 || std::abs(request.theta) > 1e-4);
+  stopRequested_ = stop;
+  gyroFiltered_ = 0.7 * gyroFiltered_ + 0.3 * frame.inertial.gyroscope.head<2>();
+  // Heading: how much more the robot turned than the applied speed asked (feet slipping about
+  // the vertical), from the gyro; the next steps turn it back.
+  if (phase_ == Phase::Walking || phase_ == Phase::Starting) {
+    const double yawRate = yawRateOf(frame);
+    yawError_ += (yawRate - speed_.theta) * dt;
+  } else {
+    yawError_ = 0;
+  }
+
+  Foot3 left{left_, 0}, right{right_, 0};
+  double torsoYaw = meanAngle(left_.theta, right_.theta);
+
+  switch (phase_) {
+    case Phase::Standing: {
+      if (wantMove) {
+        phase_ = Phase::Starting;
+        t_ = 0;
+        updateSpeed(request);
+        // The first swing foot: towards the side the robot goes (left when none).
+        const Pose2 s = clipSpeed(request);
+        supportLeft_ = s.y < -1e-4 || (std::abs(s.y) <= 1e-4 && s.theta < -1e-4);
+      }
+      const Vector2d mid = (left_.translation() + right_.translation()) / 2;
+      integrateModel(mid + (c_ + cd_ / omega_ - mid) * 2.0, dt);  // ZMP control: the DCM settles at mid
+      break;
+    }
+    case Phase::Starting: {
+      // Double support: a ZMP that brings the DCM to where the first step needs it at its start.
+      const Pose2 support = supportLeft_ ? left_ : right_;
+      const Pose2 swing = supportLeft_ ? right_ : left_;
+      const Pose2 target = nominalTarget(support, !supportLeft_, speed_);
+      const StepZmp first = stepZmp(support, supportLeft_, swing, target);
+      const Vector2d xiEnd = stepZmp(target, !supportLeft_, support, nominalTarget(target, supportLeft_, speed_)).p0 +
+                             periodicOffset(support, supportLeft_, target);
+      const Vector2d xiStart = dcmAtStart(first, xiEnd);
+      const double remaining = std::max(params_.startDuration - t_, dt);
+      const double e = std::exp(omega_ * remaining);
+      const Vector2d xi = c_ + cd_ / omega_;
+      Vector2d zmp = (xiStart - xi * e) / (1 - e);
+      // Keep it between the feet.
+      const Vector2d a = zmpOf(left_, true), b = zmpOf(right_, false);
+      const Vector2d ab = b - a;
+      const double u = std::clamp((zmp - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      zmp = a + u * ab + (zmp - a - u * ab).cwiseMax(-0.03).cwiseMin(0.03);
+      integrateModel(zmp, dt);
+      t_ += dt;
+      if (t_ >= params_.startDuration - 1e-9) {
+        phase_ = Phase::Walking;
+        startStep(frame.time);
+      }
+      break;
+    }
+    case Phase::Walking: {
+      t_ += dt;
+      // Touch-down: on time, or early when the swing foot already carries the robot.
+      const double swingWeight = frame.fsr.total(!supportLeft_);
+      const double totalWeight = swingWeight + frame.fsr.total(supportLeft_);
+      const bool early = t_ >= params_.earlyTouchdownPhase * stepDuration_ && totalWeight > 0.5 &&
+                         swingWeight > params_.touchdownWeight * totalWeight;
+      if (t_ >= stepDuration_ - 1e-9 || early) {
+        const double s = std::clamp(t_ / stepDuration_, 0.0, 1.0);
+        Pose2 landed = swingTarget_;
+        if (s < 1) {
+          const double h = smooth5(s);
+          landed = {swingStart_.x + h * (swingTarget_.x - swingStart_.x), swingStart_.y + h * (swingTarget_.y - swingStart_.y),
+                    Pose2::wrap(swingStart_.theta + h * Pose2::wrap(swingTarget_.theta - swingStart_.theta))};
+        }
+        (supportLeft_ ? right_ : left_) = landed;
+        landedLeft_ = !supportLeft_;
+        landCorrection_ = swingCorrection_;
+        landTime_ = frame.time;
+        supportLeft_ = !supportLeft_;
+        updateSpeed(request);
+        if (stopRequested_ && std::abs(speed_.x) < 1e-3 && std::abs(speed_.y) < 1e-3 && std::abs(speed_.theta) < 1e-3 &&
+            closedFeet()) {
+          phase_ = Phase::Stopping;
+          t_ = 0;
+          left = {left_, 0};
+          right = {right_, 0};
+          torsoYaw = meanAngle(left_.theta, right_.theta);
+          integrateModel(c_ + cd_ / omega_, dt);
+          break;
+        }
+        startStep(frame.time);
+      }
+      Pose2 nominal = nominalTarget(support_, !supportLeft_, speed_);
+      nominal.theta = Pose2::wrap(nominal.theta + headingCorrection_);
+      const StepZmp zmp = stepZmp(support_, supportLeft_, swingStart_, nominal);
+      // Step adjustment: send the swing foot where the DCM predicts it must land.
+      if (t_ < params_.adjustUntilPhase * stepDuration_) {
+        const Vector2d b = periodicOffset(support_, supportLeft_, nominal);
+        const Vector2d xiEnd = dcmAtEnd(zmp, c_ + cd_ / omega_, t_);
+        const Vector2d landZmp = stepZmp(nominal, !supportLeft_, support_, nominalTarget(nominal, supportLeft_, speed_)).p0;
+        const Vector2d shift = xiEnd - b - landZmp;
+        Pose2 target = nominal;
+        target.x += shift.x();
+        target.y += shift.y();
+        swingTarget_ = clipTarget(support_, !supportLeft_, target);
+        if (std::getenv("NAO_WALK_TRACE") && std::abs(t_ - 0.5 * stepDuration_) < dt / 2) {
+          const Pose2 n = support_.inverse() * nominal, a = support_.inverse() * target, c = support_.inverse() * swingTarget_;
+          std::fprintf(stderr, "t=%.3f sup%c nominal %.3f %.3f %.1f adjusted %.3f %.3f clipped %.3f %.3f | speed %.3f %.3f %.1f\n",
+                       frame.time, supportLeft_ ? 'L' : 'R', n.x, n.y, n.theta * 57.3, a.x, a.y, c.x, c.y, speed_.x, speed_.y,
+                       speed_.theta * 57.3);
+        }
+      }
+      integrateModel(zmpAt(zmp, t_ + dt / 2), dt);
+      const double s = std::clamp(t_ / stepDuration_, 0.0, 1.0);
+      const double h = smooth5(s);
+      Foot3 swing;
+      swing.pose = {swingStart_.x + h * (swingTarget_.x - swingStart_.x), swingStart_.y + h * (swingTarget_.y - swingStart_.y),
+                    Pose2::wrap(swingStart_.theta + h * Pose2::wrap(swingTarget_.theta - swingStart_.theta))};
+      swing.z = params_.stepHeight * (1 - std::cos(2 * M_PI * s)) / 2;
+      const Foot3 support{support_, 0};
+      left = supportLeft_ ? support : swing;
+      right = supportLeft_ ? swing : support;
+      torsoYaw = meanAngle(support_.theta, swing.pose.theta);
+      break;
+    }
+    case Phase::Stopping: {
+      // Double support: the DCM is led to the feet's midpoint, the COM follows.
+      const Vector2d mid = (left_.translation() + right_.translation()) / 2;
+      const Vector2d xi = c_ + cd_ / omega_;
+      integrateModel(xi + (xi - mid) * 1.5, dt);
+      t_ += dt;
+      if ((c_ - mid).norm() < 0.002 && cd_.norm() < 0.01) phase_ = Phase::Standing;
+      if (wantMove) {
+        phase_ = Phase::Starting;
+        t_ = 0;
+        updateSpeed(request);
+      }
+      break;
+    }
+  }
+
+  // Tilt corrections. The swing sole is kept parallel to the ground (and its position relative
+  // to the support sole right in the world) by undoing the torso's measured tilt beyond the
+  // planned one: d_torso = R_measured^T R_planned d_planned. It fades in while the foot lifts;
+  // after touch-down the landed foot keeps it and lets it decay, so nothing jumps.
+  const Eigen::Matrix3d tiltError = torsoTilt(frame.inertial.angle.x(), frame.inertial.angle.y()).transpose() *
+                                    rotY(params_.torsoPitch);
+  const Eigen::AngleAxisd tiltErrorAA(tiltError);
+  Eigen::Matrix3d corrL = Eigen::Matrix3d::Identity(), corrR = Eigen::Matrix3d::Identity();
+  int swingSide = 0;
+  const double decay = std::exp(-(frame.time - landTime_) / params_.landingCorrectionDecay);
+  const Eigen::Matrix3d landed = Eigen::AngleAxisd(decay * landCorrection_.norm(),
+                                                   landCorrection_.norm() > 1e-12 ? landCorrection_.normalized() : Vector3d::UnitX())
+                                     .toRotationMatrix();
+  (landedLeft_ ? corrL : corrR) = landed;
+  if (phase_ == Phase::Walking) {
+    const double s = std::clamp(t_ / stepDuration_, 0.0, 1.0);
+    const double w = params_.swingTiltCompensation * smooth5(s / 0.3);
+    const Eigen::Matrix3d swingCorr = Eigen::AngleAxisd(w * tiltErrorAA.angle(), tiltErrorAA.axis()).toRotationMatrix();
+    swingSide = supportLeft_ ? -1 : 1;
+    (supportLeft_ ? corrR : corrL) = swingCorr;
+    swingCorrection_ = w * tiltErrorAA.angle() * tiltErrorAA.axis();
+  }
+  JointRequest out;
+  out.position = solve(left, right, torsoYaw, corrL, corrR, swingSide);
+  // Velocity lead: the servos' damping acts on the joint speed, so a moving joint trails its
+  // target by about (kd / kp) q'; aiming leadTime ahead along the trajectory cancels that.
+  {
+    const JointArray ik = out.position;
+    if (havePreviousIK_ && dt > 1e-6)
+      for (BodySide side : {BodySide::Left, BodySide::Right}) {
+        const bool swing = phase_ == Phase::Walking && (side == BodySide::Left) != supportLeft_;
+        const double lead = swing ? params_.leadTime : params_.supportLeadTime;
+        for (Joint j : legJointIds(side)) {
+          if (j == LHipYawPitch) continue;
+          out.position[j] += lead * (ik[j] - previousIK_[j]) / dt;
+        }
+      }
+    previousIK_ = ik;
+    havePreviousIK_ = true;
+  }
+  // The legs' share of the weight from the FSRs (what they actually carry), smoothed.
+  const double fsrL = frame.fsr.total(true), fsrR = frame.fsr.total(false);
+  if (fsrL + fsrR > 0.5) leftShare_ = 0.6 * leftShare_ + 0.4 * fsrL / (fsrL + fsrR);
+  compensateSag(out.position, left, right, leftShare_);
+  // Gyro damping on the support ankle(s).
+  const bool single = phase_ == Phase::Walking;
+  for (bool isLeft : {true, false}) {
+    if (single && isLeft != supportLeft_) continue;
+    out.position[isLeft ? LAnklePitch : RAnklePitch] += params_.gyroPitchGain * gyroFiltered_.y();
+    out.position[isLeft ? LAnkleRoll : RAnkleRoll] += params_.gyroRollGain * gyroFiltered_.x();
+  }
+  out.stiffness.fill(1.0);
+  lastCommand_ = out.position;
+  return out;
+}
+
+void Walk::measureState(const SensorFrame&) {}
+
+void Walk::compensateSag(JointArray& joints, const Foot3& left, const Foot3& right, double leftShare) const {
+  if (params_.sagCompensation <= 0) return;
+  // The ground's force on the robot: gravity and the LIPM's horizontal push, in the torso frame.
+  const Vector2d horizontal = omega_ * omega_ * (c_ - zmp_);
+  const Vector3d force = torso_.linear().transpose() * (totalMass() * Vector3d(horizontal.x(), horizontal.y(), kGravity));
+  const Isometry3d inv = torso_.inverse();
+  double hyp = 0;
+  for (bool isLeft : {true, false}) {
+    const double share = isLeft ? leftShare : 1 - leftShare;
+    if (share <= 0) continue;
+    const Foot3& foot = isLeft ? left : right;
+    const Vector2d p = zmpOf(foot.pose, isLeft);
+    const Vector3d point = inv * Vector3d(p.x(), p.y(), foot.z);
+    const auto tau = legJointTorques(joints, isLeft ? BodySide::Left : BodySide::Right, point, share * force);
+    const auto ids = legJointIds(isLeft ? BodySide::Left : BodySide::Right);
+    hyp += tau[0];
+    for (int i = 1; i < 6; ++i) joints[ids[i]] += params_.sagCompensation * tau[i] / params_.servoGain;
+  }
+  joints[LHipYawPitch] += params_.sagCompensation * hyp / params_.servoGain;
+}
+
+void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
+  const double dt = odometryTime_ < 0 ? 0.0 : std::clamp(frame.time - odometryTime_, 0.0, 0.05);
+  odometryTime_ = frame.time;
+  // The robot frame seen from either sole: position from the leg's joint angles and the IMU's
+  // tilt (yaw-free), heading relative to the sole.
+  const Eigen::Matrix3d tilt = torsoTilt(frame.inertial.angle.x(), frame.inertial.angle.y());
+  std::array<Pose2, 2> relative;  // [left, right]: the robot frame in the sole frame
+  for (int side = 0; side < 2; ++side) {
+    const Isometry3d sole = torsoToSole(frame.joints.position, side == 0 ? BodySide::Left : BodySide::Right);
+    const Vector3d toTorso = tilt * (-sole.translation());
+    const Vector3d soleX = tilt * sole.linear().col(0);
+    const double soleYaw = std::atan2(soleX.y(), soleX.x());
+    const Vector2d v = rotZ(-soleYaw).topLeftCorner<2, 2>() * toTorso.head<2>();
+    relative[side] = Pose2(v.x(), v.y(), -soleYaw);
+  }
+  const double yawRate = yawRateOf(frame);
+  const double turn = 0.5 * (yawRate + lastYawRate_) * dt;
+  lastYawRate_ = yawRate;
+  // The motion since the last cycle relative to the feet on the ground (a loaded foot does not
+  // move), each foot's share by the weight it carried: while the weight passes from one foot to
+  // the other both slip a little, the lightly loaded one more. The heading from the gyro.
+  if (haveRelative_ && !rotationOnly) {
+    const Pose2 dl = lastRelative_[0].inverse() * relative[0], dr = lastRelative_[1].inverse() * relative[1];
+    const double w = std::pow(odometryLeftShare_, params_.odometryLoadExponent);
+    const double wr = std::pow(1 - odometryLeftShare_, params_.odometryLoadExponent);
+    const double a = w / std::max(w + wr, 1e-9);
+    Pose2 delta(a * dl.x + (1 - a) * dr.x, a * dl.y + (1 - a) * dr.y, a * dl.theta + (1 - a) * dr.theta);
+    if (params_.gyroOdometry) delta.theta = turn;
+    odometry_ = odometry_ * delta;
+  } else {
+    odometry_.theta = Pose2::wrap(odometry_.theta + turn);
+  }
+  lastRelative_ = relative;
+  haveRelative_ = !rotationOnly;
+  const double fl = frame.fsr.total(true), fr = frame.fsr.total(false);
+  if (fl + fr > 0.5) odometryLeftShare_ = fl / (fl + fr);
+}
+
+}  // namespace nao

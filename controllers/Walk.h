@@ -1,0 +1,186 @@
+#pragma once
+// Omnidirectional walk for the NAO V6: a linear inverted pendulum (LIPM) gait whose footsteps
+// are placed by the divergent component of motion (DCM, the "capture point"), closed-loop from
+// the IMU, the joint encoders and the FSRs.
+//
+// Why this design. The NAO's servos are position controlled and weak (8.9 Nm stall at the
+// knee), so the gait must not ask for more than gravity and the pendulum give: the centre of
+// mass (COM) follows the LIPM with the zero-moment point (ZMP) fixed in the support foot, which
+// keeps the soles flat and the ankle torques small, at any speed up to the servo's joint speed.
+// Of the LIPM's two components only the DCM xi = c + c'/omega diverges (xi' = omega (xi - p));
+// the COM converges to it by itself. So balance is a matter of where the next foot lands:
+// during each step the DCM at touch-down is predicted, xi_end = p + (xi - p) e^(omega (T - t)),
+// and the swing foot is sent to xi_end - b, where b is the DCM's offset from the landing foot
+// in the periodic gait for the commanded speed (found by the backward recursion over the next
+// few nominal footsteps). Undisturbed, that is the nominal footstep; pushed or slipping, the
+// step moves with the DCM error, up to the leg's reach (step adjustment, as in B-Human's walk
+// and the capture-point literature). Compared with ZMP preview control this needs no preview
+// horizon of future ZMPs and reacts within one step; compared with a purely reactive walk
+// (B-Human 2018) the sway is planned, so fast steps need no luck with the rocking phase.
+//
+// Closed loop:
+//  - DCM estimate: the model's COM state is pulled towards the measured one (the leg's joint
+//    encoders from the support sole, the IMU's tilt), so real deviations move the footsteps;
+//  - the swing sole is kept parallel to the ground by the IMU's tilt;
+//  - gyro damping on the support ankle and hip (pitch and roll);
+//  - FSR touch-down: a step ends early when the swing foot already carries weight, and the
+//    support switches to the foot that actually carries the robot.
+// Odometry: the robot frame's motion relative to the support sole from the measured joint
+// angles (translation) and the gyro's yaw rate about the vertical (rotation).
+#include <array>
+
+#include <Eigen/Geometry>
+
+#include "controllers/MotionRequest.h"
+#include "robot/JointRequest.h"
+#include "robot/SensorData.h"
+
+namespace nao {
+
+class Walk {
+ public:
+  struct Params {
+    double stepDuration = 0.25;   // s, one single-support phase
+    double stepHeight = 0.025;    // m, swing foot clearance at mid-step
+    double torsoHeight = 0.222;   // m, torso origin above the ground
+    double torsoPitch = 0.0;      // rad, forward lean of the torso
+    double footSpacing = 0.10;    // m, between the sole centres standing
+    double zmpX = 0.012;          // m, the ZMP in the support sole, forward of the ankle
+    double zmpYInside = 0.008;    // m, the ZMP towards the inner edge
+    double zmpTravelX = 0.6;      // share of the COM's travel over the sole the ZMP follows (heel to toe)
+    double zmpTravelY = 0.3;      // ... sideways
+    double maxZmpTravelX = 0.05;  // m
+    double maxZmpTravelY = 0.015; // m
+    double maxForward = 0.36;     // m/s
+    double maxBackward = 0.22;    // m/s
+    double maxSide = 0.2;         // m/s
+    double maxTurn = 1.5;         // rad/s
+    double accelForward = 0.5;    // m/s^2 of the applied speed (per step)
+    double accelSide = 0.6;       // m/s^2
+    double accelTurn = 3.0;       // rad/s^2
+    double maxStepOutward = 0.13;  // m, lateral reach beyond the standing spacing
+    double maxStepInward = 0.015;  // m, inside the standing spacing
+    double maxStepForward = 0.11;  // m, swing foot ahead of the support foot
+    double maxStepBackward = 0.08;
+    double startDuration = 0.3;   // s of double support to shift the DCM onto the first support foot
+    double stateGain = 0.0;       // per cycle: how far the model COM state moves to the measurement
+    double gyroPitchGain = 0.1;   // rad per rad/s, support ankle pitch
+    double gyroRollGain = 0.05;   // rad per rad/s, support ankle roll
+    double earlyTouchdownPhase = 0.85; // a step may end after this fraction ...
+    double touchdownWeight = 0.25;     // ... once the swing foot carries this fraction of the weight
+    double adjustUntilPhase = 0.75;    // the swing target follows the DCM until this fraction
+    // Sag compensation: the leg servos' position gain (N m / rad) as the robot program knows
+    // it; the support legs' joint targets get tau / gain for the torques that carry the robot.
+    double servoGain = 60.0;
+    double headingGain = 0.5;            // per step: share of the gyro's heading error turned back
+    double maxHeadingCorrection = 0.08;  // rad per step
+    bool gyroOdometry = true;
+    double odometryLoadExponent = 2.0;  // the feet's odometry weights: (FSR load share)^exponent  // odometry rotation from the gyro (else from the legs' kinematics)
+    double sagCompensation = 1.0;  // 0 = off
+    double leadTime = 0.0;   // s: swing leg targets lead the trajectory (the servos' kd / kp)
+    double supportLeadTime = 0.0;  // s: the same for the support leg
+    double swingTiltCompensation = 1.0;   // 0 = off: swing sole parallel to the ground
+    double landingCorrectionDecay = 0.06;  // s, how fast a landed foot returns to the plan
+  };
+
+  enum class Phase { Standing, Starting, Walking, Stopping };
+
+  Walk() : Walk(Params{}) {}
+  explicit Walk(const Params& params);
+
+  // The walk's standing posture: feet at footSpacing, COM above their midpoint, torso at
+  // torsoHeight (the walk starts and ends there). Arms hang at the sides.
+  JointArray standPosture() const;
+
+  // Starts from the stand posture: resets the model to the measured state.
+  void reset(const SensorFrame& frame);
+  // One cycle. speed: vx, vy, vtheta (robot frame, clipped to the limits). With a zero speed and
+  // stop set, the walk closes its feet and comes to a stand.
+  JointRequest update(const SensorFrame& frame, const Pose2& speed, bool stop = false);
+
+  // Odometry, once per cycle whatever the robot does: translation from the support sole's
+  // kinematics unless rotationOnly (lying, getting up), rotation from the gyro.
+  void updateOdometry(const SensorFrame& frame, bool rotationOnly = false);
+  void resetOdometry(const Pose2& pose = {}) { odometry_ = pose; haveRelative_ = false; }
+
+  Phase phase() const { return phase_; }
+  bool standing() const { return phase_ == Phase::Standing; }
+  const Pose2& odometry() const { return odometry_; }
+  const Pose2& appliedSpeed() const { return speed_; }
+  const Params& params() const { return params_; }
+  Params& params() { return params_; }
+  int steps() const { return steps_; }
+  // The model's state in the walk's plan frame (for tests and logs).
+  struct State {
+    Eigen::Vector2d com, comVelocity, zmp;
+    Pose2 left, right, swingTarget;
+    bool supportLeft = false;
+    double stepTime = 0;
+  };
+  State state() const { return {c_, cd_, zmp_, left_, right_, swingTarget_, supportLeft_, t_}; }
+  // The largest speeds the walk accepts, per axis (vx forward, vy, vtheta).
+  Pose2 clipSpeed(const Pose2& speed) const;
+
+ private:
+  struct Foot3 {
+    Pose2 pose;
+    double z = 0;
+  };
+
+  Eigen::Vector2d zmpOf(const Pose2& foot, bool left) const;
+  Pose2 nominalTarget(const Pose2& support, bool swingLeft, const Pose2& speed) const;
+  Pose2 clipTarget(const Pose2& support, bool swingLeft, const Pose2& target) const;
+  struct StepZmp {
+    Eigen::Vector2d p0, p1;  // the ZMP at the step's start and end
+  };
+  StepZmp stepZmp(const Pose2& support, bool supportLeft, const Pose2& from, const Pose2& to) const;
+  Eigen::Vector2d zmpAt(const StepZmp& z, double t) const;
+  Eigen::Vector2d dcmAtStart(const StepZmp& z, const Eigen::Vector2d& xiEnd) const;
+  Eigen::Vector2d dcmAtEnd(const StepZmp& z, const Eigen::Vector2d& xi, double t) const;
+  Eigen::Vector2d periodicOffset(const Pose2& support, bool supportLeft, const Pose2& target) const;
+  void startStep(double time);
+  void updateSpeed(const Pose2& request);
+  void integrateModel(const Eigen::Vector2d& zmp, double dt);
+  void measureState(const SensorFrame& frame);
+  JointArray solve(const Foot3& left, const Foot3& right, double torsoYaw, const Eigen::Matrix3d& leftCorrection,
+                   const Eigen::Matrix3d& rightCorrection, int swingSide);
+  void compensateSag(JointArray& joints, const Foot3& left, const Foot3& right, double leftShare) const;
+  bool closedFeet() const;
+
+  Params params_;
+  double omega_ = 6.0;      // sqrt(g / COM height)
+  double comHeight_ = 0.26;
+  Phase phase_ = Phase::Standing;
+  bool supportLeft_ = false;
+  double t_ = 0, stepDuration_ = 0.25;
+  double lastTime_ = -1;
+  Pose2 support_, swingStart_, swingTarget_;  // the walk's plan frame
+  Pose2 left_, right_;                        // where the feet are (plan frame)
+  Eigen::Vector2d c_ = Eigen::Vector2d::Zero(), cd_ = Eigen::Vector2d::Zero();  // model COM
+  Eigen::Vector2d zmp_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d measuredC_ = Eigen::Vector2d::Zero(), measuredCd_ = Eigen::Vector2d::Zero();
+  bool haveMeasurement_ = false;
+  Eigen::Vector2d torsoXY_ = Eigen::Vector2d::Zero();
+  Eigen::Isometry3d torso_ = Eigen::Isometry3d::Identity();  // plan frame
+  Pose2 speed_;
+  bool stopRequested_ = false;
+  int steps_ = 0;
+  // Odometry.
+  Pose2 odometry_;
+  std::array<Pose2, 2> lastRelative_{};  // robot frame in the left / right sole frame, last cycle
+  bool haveRelative_ = false;
+  double odometryLeftShare_ = 0.5;
+  double odometryTime_ = -1, lastYawRate_ = 0;
+  double leftShare_ = 0.5;
+  double yawError_ = 0, headingCorrection_ = 0;
+  Eigen::Vector2d gyroFiltered_ = Eigen::Vector2d::Zero();
+  JointArray lastCommand_{};
+  JointArray arms_{};
+  JointArray previousIK_{};
+  bool havePreviousIK_ = false;  // the stand posture: arms and head
+  Eigen::Vector3d swingCorrection_ = Eigen::Vector3d::Zero(), landCorrection_ = Eigen::Vector3d::Zero();
+  bool landedLeft_ = true;
+  double landTime_ = -1e9;
+};
+
+}  // namespace nao

@@ -1,0 +1,17 @@
+#pragma once
+// The same residuals as Gauss-Newton (CalibrationCost) minimised by Ceres (Levenberg-Marquardt,
+// dense QR, central-difference Jacobian): a second, independent solver to check the first.
+#include "perception/calibration/Solver.h"
+
+namespace nao::calibration {
+
+struct CeresOptions {
+  int maxIterations = 100;
+  double functionTolerance = 1e-15;
+  double parameterTolerance = 1e-12;
+  double gradientTolerance = 1e-15;
+};
+
+SolverResult solveCeres(const CalibrationCost& cost, const Params& start = {}, const CeresOptions& options = {});
+
+}  // namespace nao::calibration

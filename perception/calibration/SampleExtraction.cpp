@@ -1,0 +1,231 @@
+#include "perception/calibration/SampleExtraction.h"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <opencv2/imgproc.hpp>
+
+#include "perception/calibration/CalibrationCost.h"
+#include "perception/vision/GoalBoxDetector.h"
+#include "perception/vision/VisionPipeline.h"
+
+namespace nao::calibration {
+namespace {
+
+std::string fmt(const char* format, double a, double b = 0) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, format, a, b);
+  return buf;
+}
+
+std::optional<Eigen::Vector2d> intersectLines(const ImageSegment& a, const ImageSegment& b) {
+  const Eigen::Vector2d da = a.direction(), db = b.direction();
+  const double det = da.x() * db.y() - da.y() * db.x();
+  if (std::abs(det) < 1e-9) return std::nullopt;
+  const Eigen::Vector2d r = b.from - a.from;
+  return a.from + (r.x() * db.y() - r.y() * db.x()) / det * da;
+}
+
+double sinBetween(const ImageSegment& a, const ImageSegment& b) {
+  const Eigen::Vector2d da = a.direction(), db = b.direction();
+  return std::max(0.2, std::abs(da.x() * db.y() - da.y() * db.x()));
+}
+
+
+// Moves the end of an image edge that lies nearer the horizon so that the whole edge lies at
+// least minDepression below the (uncalibrated) horizon: the solver moves the horizon by a few
+// degrees, and a point near it would leave the ground. The line is the same; only the two
+// points that stand for it change. False if too little is left.
+bool clipBelowHorizon(const CameraMatrix& cm, ImageLine& e, double minDepression, double minLengthPx) {
+  auto depression = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector3d r = cm.pixelRay(p);
+    return std::atan2(-r.z(), std::hypot(r.x(), r.y()));
+  };
+  const double da = depression(e.from), db = depression(e.to);
+  if (da >= minDepression && db >= minDepression) return true;
+  if (da < minDepression && db < minDepression) return false;
+  Eigen::Vector2d& far = da < db ? e.from : e.to;
+  const Eigen::Vector2d near = da < db ? e.to : e.from;
+  double lo = 0, hi = 1;  // fraction from near to far: lo passes, hi fails
+  for (int i = 0; i < 40; ++i) {
+    const double mid = (lo + hi) / 2;
+    if (depression(near + mid * (far - near)) >= minDepression) lo = mid;
+    else hi = mid;
+  }
+  far = near + lo * (far - near);
+  return (far - near).norm() >= minLengthPx;
+}
+
+// Steps 3 and 4 for one candidate: the sample, or nullopt with the reason.
+std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const GradientImage& gradients,
+                                         const CameraMatrix& coarse, const JointArray& joints,
+                                         const Eigen::Vector2d& imuAngle, const CameraIntrinsics& intrinsics,
+                                         CameraId camera, const CameraCalibration& current, const ExtractionOptions& o,
+                                         std::string& reason) {
+  // 3: refine each line away from the junctions.
+  const double s1 = sinBetween(det.shortLine, det.longLine1), s2 = sinBetween(det.shortLine, det.longLine2);
+  const double ws = det.shortLine.widthPx, w1 = det.longLine1.widthPx, w2 = det.longLine2.widthPx;
+  const double m = o.junctionMarginPx;
+  const std::vector<Exclusion> shortExcl = {{det.junction1, (w1 / 2 + ws) / s1 + m}, {det.junction2, (w2 / 2 + ws) / s2 + m}};
+  const std::vector<Exclusion> long1Excl = {{det.junction1, (ws / 2 + w1) / s1 + m}};
+  const std::vector<Exclusion> long2Excl = {{det.junction2, (ws / 2 + w2) / s2 + m}};
+  // The short line defines the junctions: it must be seen whole. A long line may be partly
+  // hidden (a goal post) as long as a good stretch of it is measured.
+  HoughRefinerOptions shortOpts = o.hough, longOpts = o.hough;
+  shortOpts.minCoverage = std::max(o.hough.minCoverage, 0.7);
+  longOpts.minCoverage = std::min(o.hough.minCoverage, 0.4);
+  const RefinedLine refined[3] = {refineLine(gradients, det.shortLine, shortExcl, shortOpts),
+                                  refineLine(gradients, det.longLine1, long1Excl, longOpts),
+                                  refineLine(gradients, det.longLine2, long2Excl, longOpts)};
+  CalibrationSample sample;
+  sample.camera = camera;
+  sample.intrinsics = intrinsics;
+  sample.joints = joints;
+  sample.imuAngle = imuAngle;
+  const double minDepression = o.minDepressionDeg * std::numbers::pi / 180;
+  for (int l = 0; l < 3; ++l) {
+    if (!refined[l].ok) {
+      reason = std::string("occluded or unclear ") + kLineRoleNames[l] + " line: " + refined[l].reason;
+      return std::nullopt;
+    }
+    if (refined[l].measurement.rmsPx > o.maxFitRmsPx) {
+      reason = std::string("implausible ") + kLineRoleNames[l] + " line: " +
+               fmt("its edge points scatter by %.2f px", refined[l].measurement.rmsPx);
+      return std::nullopt;
+    }
+    sample.lines[l] = refined[l].measurement;
+    if (!clipBelowHorizon(coarse, sample.lines[l].edgeA, minDepression, o.minClippedLengthPx) ||
+        !clipBelowHorizon(coarse, sample.lines[l].edgeB, minDepression, o.minClippedLengthPx)) {
+      reason = std::string("implausible ") + kLineRoleNames[l] + " line: " +
+               fmt("less than %.0f px of it lies %.0f deg below the horizon", o.minClippedLengthPx, o.minDepressionDeg);
+      return std::nullopt;
+    }
+  }
+
+  // 4: does it look like the goal box on the ground, with the offsets used so far?
+  CostOptions co;
+  co.goalBoxDepth = o.goalBoxDepth;
+  const CalibrationCost cost({sample}, co);
+  const SampleResiduals r = cost.sampleResiduals(current.toArray(), 0);
+  if (!r.projected) {
+    reason = "implausible: a goal box line does not reach the ground";
+    return std::nullopt;
+  }
+  if (std::abs(r.angle1Deg) > o.maxAngleErrorDeg || std::abs(r.angle2Deg) > o.maxAngleErrorDeg) {
+    reason = fmt("implausible: the lines meet at %.1f and %.1f deg from a right angle on the ground", r.angle1Deg,
+                 r.angle2Deg);
+    return std::nullopt;
+  }
+  const double ratio = (r.depthErrorM + o.goalBoxDepth) / o.goalBoxDepth;
+  if (ratio < o.minDepthRatio || ratio > o.maxDepthRatio) {
+    reason = fmt("implausible: the long lines are %.2f m apart on the ground (goal box: %.2f m)",
+                 r.depthErrorM + o.goalBoxDepth, o.goalBoxDepth);
+    return std::nullopt;
+  }
+  return sample;
+}
+
+}  // namespace
+
+cv::Mat greenness(const CameraImage& image) {
+  cv::Mat y(image.height, image.width, CV_32F), u(image.height, image.width, CV_32F), v(image.height, image.width, CV_32F);
+  for (int r = 0; r < image.height; ++r)
+    for (int x = 0; x < image.width; ++x) {
+      y.at<float>(r, x) = image.y(x, r);
+      u.at<float>(r, x) = image.u(x, r) - 128.f;
+      v.at<float>(r, x) = image.v(x, r) - 128.f;
+    }
+  // A little smoothing: in deep shadow the chroma is a few units, comparable to the noise.
+  for (cv::Mat* m : {&y, &u, &v}) cv::blur(*m, *m, cv::Size(3, 3));
+  cv::Mat out(image.height, image.width, CV_32F);
+  for (int r = 0; r < image.height; ++r)
+    for (int x = 0; x < image.width; ++x) {
+      // BT.601 full range back to RGB; only differences matter, so Y cancels.
+      const float uu = u.at<float>(r, x), vv = v.at<float>(r, x);
+      const float red = 1.402f * vv, green = -0.344f * uu - 0.714f * vv, blue = 1.772f * uu;
+      out.at<float>(r, x) = (green - std::max(red, blue)) / std::max(y.at<float>(r, x), 10.f);
+    }
+  return out;
+}
+
+cv::Mat grayFromYuyv(const CameraImage& image) {
+  cv::Mat gray(image.height, image.width, CV_8U);
+  for (int y = 0; y < image.height; ++y) {
+    std::uint8_t* row = gray.ptr<std::uint8_t>(y);
+    const std::uint8_t* src = image.yuyv.data() + static_cast<std::size_t>(y) * image.width * 2;
+    for (int x = 0; x < image.width; ++x) row[x] = src[2 * x];
+  }
+  return gray;
+}
+
+ExtractionResult extractSample(const CameraImage& image, const JointArray& joints, const Eigen::Vector2d& imuAngle,
+                               const CameraIntrinsics& intrinsicsIn, const CameraCalibration& current,
+                               const ExtractionOptions& o, const std::vector<LinesPercept::Line>* visionLines) {
+  ExtractionResult out;
+  if (!image.valid()) {
+    out.reason = "invalid image";
+    return out;
+  }
+  CameraIntrinsics intrinsics = intrinsicsIn;
+  if (intrinsics.width != image.width || intrinsics.height != image.height)
+    intrinsics = CameraIntrinsics::fromFovY(image.width, image.height, intrinsicsIn.fovY());
+  const cv::Mat gray = grayFromYuyv(image);
+  const CameraMatrix coarse = computeCameraMatrix(joints, imuAngle, image.camera, current, intrinsics);
+
+  GradientImage gradients = GradientImage::sobel(gray);
+  gradients.greenness = greenness(image);
+  // Tries goal box candidates, best first, until one gives a sample; the reason kept is the
+  // first candidate's of the first source.
+  auto tryCandidates = [&](const char* source, const std::vector<ImageSegment>& segments,
+                           std::vector<GoalBoxSideDetection> candidates) {
+    for (auto& c : findGoalBoxSideCandidates(segments, image.width, image.height, o.finder)) candidates.push_back(c);
+    if (candidates.empty() && out.reason.empty()) out.reason = "goal box not found: no short line joining two long lines";
+    for (std::size_t c = 0; c < candidates.size() && c < static_cast<std::size_t>(o.maxCandidates); ++c) {
+      std::string reason;
+      auto sample = measure(candidates[c], gradients, coarse, joints, imuAngle, intrinsics, image.camera, current, o, reason);
+      if (sample) {
+        out.segments = segments;
+        out.detection = candidates[c];
+        out.sample = sample;
+        out.source = source;
+        out.reason.clear();
+        return true;
+      }
+      if (c == 0 && (out.reason.empty() || out.reason.rfind("goal box not found", 0) == 0)) {
+        out.segments = segments;
+        out.detection = candidates[c];
+        out.reason = reason;
+      }
+    }
+    return false;
+  };
+
+  // 1, 2: segments and the goal box side, image-only. The vision pipeline's lines (and its
+  // goal box finder) first, when asked for; OpenCV's LSD if they give no sample.
+  if (visionLines || o.source == LineSource::Vision) {
+    VisionGeometry geometry;
+    geometry.lineWidth = o.lineWidth;
+    const std::vector<LinesPercept::Line> lines = visionLines ? *visionLines : runVision(image, coarse, geometry).lines.lines;
+    const std::vector<ImageSegment> segments = segmentsFromLinesPercept(lines, coarse, o.lineWidth);
+    std::vector<GoalBoxSideDetection> theirs;
+    if (const auto gb = detectGoalBoxSide(lines, image.width, image.height); gb.found) {
+      GoalBoxSideDetection d;
+      d.shortLine = segments[gb.shortLine];
+      d.longLine1 = segments[gb.longLine1];
+      d.longLine2 = segments[gb.longLine2];
+      const auto j1 = intersectLines(d.shortLine, d.longLine1), j2 = intersectLines(d.shortLine, d.longLine2);
+      if (j1 && j2) {
+        d.found = true;
+        d.junction1 = *j1;
+        d.junction2 = *j2;
+        theirs.push_back(d);
+      }
+    }
+    if (tryCandidates("vision", segments, theirs)) return out;
+  }
+  if (tryCandidates("lsd", paintLineSegments(gray, coarse.horizon(), o.segments), {})) return out;
+  return out;
+}
+
+}  // namespace nao::calibration

@@ -1,0 +1,404 @@
+#include "scenarios/PerceptionEval.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "controllers/StandController.h"
+#include "perception/CameraModel.h"
+#include "perception/Geometry.h"
+#include "perception/vision/Annotate.h"
+#include "perception/vision/VisionPipeline.h"
+#include "robot/Paths.h"
+#include "sim/CameraRenderer.h"
+#include "sim/GroundTruth.h"
+#include "sim/ImageIO.h"
+#include "sim/SceneBuilder.h"
+#include "sim/World.h"
+
+namespace nao::sim {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+constexpr double kLineMaxAngle = 5 * kDeg;
+constexpr double kLineMaxDist = 0.10;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+double pointLineDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& dir) {
+  const Eigen::Vector2d r = p - a;
+  return std::abs(r.x() * dir.y() - r.y() * dir.x());
+}
+
+// Does a detected segment (field frame) lie on a true line: within 5 deg of its direction,
+// both ends within 10 cm of it, overlapping its extent?
+bool lineMatches(const Eigen::Vector2d& d0, const Eigen::Vector2d& d1, const Eigen::Vector2d& t0,
+                 const Eigen::Vector2d& t1) {
+  const double lt = (t1 - t0).norm(), ld = (d1 - d0).norm();
+  if (lt < 1e-9 || ld < 1e-9) return false;
+  const Eigen::Vector2d ut = (t1 - t0) / lt, ud = (d1 - d0) / ld;
+  if (std::abs(ut.x() * ud.y() - ut.y() * ud.x()) > std::sin(kLineMaxAngle)) return false;
+  if (pointLineDistance(d0, t0, ut) > kLineMaxDist || pointLineDistance(d1, t0, ut) > kLineMaxDist) return false;
+  const double a = (d0 - t0).dot(ut), b = (d1 - t0).dot(ut);
+  return std::max(a, b) > -kLineMaxDist && std::min(a, b) < lt + kLineMaxDist;
+}
+
+// Fraction of a ball's image disc inside the image.
+double discInImage(const Eigen::Vector2d& c, double r, int w, int h) {
+  int in = 0, n = 0;
+  for (int i = -4; i <= 4; ++i)
+    for (int j = -4; j <= 4; ++j) {
+      const Eigen::Vector2d p = c + r / 4 * Eigen::Vector2d(i, j);
+      if ((p - c).norm() > r) continue;
+      ++n;
+      in += p.x() >= 0 && p.y() >= 0 && p.x() < w && p.y() < h;
+    }
+  return n ? double(in) / n : 0;
+}
+
+FieldIntersection::Type truthType(LinesPercept::Intersection::Type t) {
+  switch (t) {
+    case LinesPercept::Intersection::Type::L: return FieldIntersection::Type::L;
+    case LinesPercept::Intersection::Type::T: return FieldIntersection::Type::T;
+    default: return FieldIntersection::Type::X;
+  }
+}
+
+// Truth that is the same under every lighting: what one camera sees of one scene.
+struct FrameTruth {
+  std::vector<VisibleLine> lines;  // >= 0.5 m visible within 4 m
+  bool circleEligible = false;     // >= half of the circle in view within 3 m
+  std::vector<VisibleBall> balls3, balls5;
+};
+
+FrameTruth computeTruth(const World& world, CameraId camera) {
+  FrameTruth t;
+  const VisibleFeatures v4 = visibleFeatures(world, 0, camera, 4.0);
+  for (const auto& l : v4.lines)
+    if (l.visibleLength >= 0.5) t.lines.push_back(l);
+  // The circle within 3 m.
+  const FieldModel& f = world.field();
+  int visible = 0;
+  constexpr int kSamples = 90;
+  for (int k = 0; k < kSamples; ++k) {
+    const double a = 2 * M_PI * k / kSamples;
+    const Eigen::Vector2d p = f.centerCircleCenter + f.centerCircleRadius * Eigen::Vector2d(std::cos(a), std::sin(a));
+    visible += trulyVisible(world, 0, camera, Eigen::Vector3d(p.x(), p.y(), 0.001), 3.0);
+  }
+  t.circleEligible = visible * 2 >= kSamples;
+  // Balls: in view (not hidden) with at least 75 % of the disc on the image.
+  const CameraResolution res = world.cameraResolution(camera);
+  const VisibleFeatures vb = visibleFeatures(world, 0, camera, 5.0);
+  for (const auto& b : vb.balls) {
+    if (discInImage(b.image, b.radiusPx, res.width, res.height) < 0.75) continue;
+    if (b.distance <= 5.0) t.balls5.push_back(b);
+    if (b.distance <= 3.0) t.balls3.push_back(b);
+  }
+  return t;
+}
+
+void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, const VisionResult& r,
+                const Eigen::Vector3d& robotPose, PerceptionFigures& fig) {
+  ++fig.frames;
+  const FieldModel& field = world.field();
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> detected;
+  for (const auto& l : r.lines.lines) detected.emplace_back(robotToField(l.from, robotPose), robotToField(l.to, robotPose));
+  // Recall over the true lines in view.
+  for (const auto& tl : truth.lines) {
+    ++fig.trueLines;
+    const FieldLine& fl = field.lines[tl.index];
+    bool ok = false;
+    for (const auto& d : detected)
+      if (lineMatches(d.first, d.second, fl.from, fl.to)) {
+        ++fig.trueLinesFound;
+        ok = true;
+        break;
+      }
+    if (!ok && std::getenv("NAO_LINESTAT")) {  // TEMP
+      const Eigen::Vector2d cam = world.cameraPose(0, camera).translation().head<2>();
+      const Eigen::Vector2d u = (tl.to - tl.from).normalized();
+      const double t = std::clamp((cam - tl.from).dot(u), 0.0, tl.visibleLength);
+      std::fprintf(stderr, "LINEMISS cam %d vis %.2f near %.2f img (%.0f,%.0f)-(%.0f,%.0f) %s\n", static_cast<int>(camera),
+                   tl.visibleLength, (tl.from + t * u - cam).norm(), tl.imageFrom.x(), tl.imageFrom.y(), tl.imageTo.x(),
+                   tl.imageTo.y(), tl.name.c_str());
+    }
+  }
+  // Precision over every detection, against every line of the field.
+  for (std::size_t di = 0; di < detected.size(); ++di) {
+    const auto& d = detected[di];
+    ++fig.detectedLines;
+    bool ok = false;
+    for (const auto& fl : field.lines)
+      if (lineMatches(d.first, d.second, fl.from, fl.to)) {
+        ++fig.detectedLinesMatched;
+        ok = true;
+        break;
+      }
+    if (!ok && std::getenv("NAO_LINESTAT")) {  // TEMP
+      double bestA = 1e9, bestD0 = 0, bestD1 = 0;
+      const Eigen::Vector2d ud = (d.second - d.first).normalized();
+      for (const auto& fl : field.lines) {
+        const Eigen::Vector2d ut = (fl.to - fl.from).normalized();
+        const double a = std::asin(std::min(1.0, std::abs(ut.x() * ud.y() - ut.y() * ud.x()))) * 180 / M_PI;
+        const double d0 = pointLineDistance(d.first, fl.from, ut), d1 = pointLineDistance(d.second, fl.from, ut);
+        if (a + 20 * (d0 + d1) < bestA + 20 * (bestD0 + bestD1)) bestA = a, bestD0 = d0, bestD1 = d1;
+      }
+      const auto& l = r.lines.lines[di];
+      std::fprintf(stderr, "LINEFALSE cam %d dist %.2f len %.2f spots %zu angle %.1f d0 %.3f d1 %.3f img (%.0f,%.0f)-(%.0f,%.0f)\n",
+                   static_cast<int>(camera), std::min(l.from.norm(), l.to.norm()), (l.to - l.from).norm(), l.spots.size(),
+                   bestA, bestD0, bestD1, l.imageFrom.x(), l.imageFrom.y(), l.imageTo.x(), l.imageTo.y());
+    }
+  }
+  // Circle.
+  const bool circleRight =
+      r.lines.circle.found && (robotToField(r.lines.circle.centre, robotPose) - field.centerCircleCenter).norm() < 0.3;
+  if (truth.circleEligible) {
+    ++fig.circleFrames;
+    fig.circleFound += circleRight;
+  }
+  if (r.lines.circle.found && !circleRight) ++fig.circleFalse;
+  // Intersections and the penalty mark (informative).
+  for (const auto& x : r.lines.intersections) {
+    ++fig.intersections;
+    const Eigen::Vector2d p = robotToField(x.position, robotPose);
+    for (const auto& fx : field.intersections)
+      if ((fx.position - p).norm() < 0.3 && fx.type == truthType(x.type)) {
+        ++fig.intersectionsCorrect;
+        break;
+      }
+  }
+  if (r.lines.penaltyMark) {
+    ++fig.penaltyMarks;
+    const Eigen::Vector2d p = robotToField(*r.lines.penaltyMark, robotPose);
+    for (const auto& c : field.penaltyCrosses) fig.penaltyMarksCorrect += (c - p).norm() < 0.3;
+  }
+  // Ball.
+  const Eigen::Vector2d camFoot = world.cameraPose(0, camera).translation().head<2>();
+  std::optional<Eigen::Vector2d> seen;
+  if (r.ball.seen) {
+    ++fig.ballPercepts;
+    seen = robotToField(r.ball.position, robotPose);
+    bool matchesAny = false;
+    for (int b = 0; b < world.ballCount(); ++b) {
+      const Eigen::Vector2d tb = world.ballPosition(b).head<2>();
+      const double dist = (tb - camFoot).norm();
+      if ((*seen - tb).norm() < std::max(0.3, 0.2 * dist)) matchesAny = true;
+    }
+    fig.falseBalls += !matchesAny;
+    if (std::getenv("NAO_BALLSTAT")) std::fprintf(stderr, "BALLSTAT %d\n", matchesAny);  // TEMP
+  }
+  auto found = [&](const VisibleBall& b) {
+    if (!seen) return false;
+    const double err = (*seen - b.position.head<2>()).norm();
+    return err < std::max(0.3, 0.2 * b.distance);
+  };
+  for (const auto& b : truth.balls3) {
+    ++fig.balls3;
+    fig.found3 += found(b);
+  }
+  for (const auto& b : truth.balls5) {
+    ++fig.balls5;
+    if (found(b)) {
+      ++fig.found5;
+      fig.ballErrorRatios.push_back((*seen - b.position.head<2>()).norm() / std::max(0.05, b.distance));
+    }
+  }
+}
+
+}  // namespace
+
+double PerceptionFigures::medianBallErrorRatio() const { return median(ballErrorRatios); }
+
+void PerceptionFigures::add(const PerceptionFigures& o) {
+  frames += o.frames;
+  trueLines += o.trueLines, trueLinesFound += o.trueLinesFound;
+  detectedLines += o.detectedLines, detectedLinesMatched += o.detectedLinesMatched;
+  circleFrames += o.circleFrames, circleFound += o.circleFound, circleFalse += o.circleFalse;
+  balls3 += o.balls3, found3 += o.found3, balls5 += o.balls5, found5 += o.found5;
+  ballPercepts += o.ballPercepts, falseBalls += o.falseBalls;
+  ballErrorRatios.insert(ballErrorRatios.end(), o.ballErrorRatios.begin(), o.ballErrorRatios.end());
+  intersections += o.intersections, intersectionsCorrect += o.intersectionsCorrect;
+  penaltyMarks += o.penaltyMarks, penaltyMarksCorrect += o.penaltyMarksCorrect;
+}
+
+nlohmann::json PerceptionFigures::toJson() const {
+  return {{"frames", frames},
+          {"lines",
+           {{"recall", lineRecall()},
+            {"precision", linePrecision()},
+            {"true_lines", trueLines},
+            {"true_lines_found", trueLinesFound},
+            {"detections", detectedLines},
+            {"detections_matched", detectedLinesMatched}}},
+          {"circle",
+           {{"detection_rate", circleRate()},
+            {"frames_in_view", circleFrames},
+            {"found", circleFound},
+            {"false_per_frame", frames ? double(circleFalse) / frames : 0.0}}},
+          {"ball",
+           {{"recall_3m", ballRecall3()},
+            {"recall_5m", ballRecall5()},
+            {"false_per_frame", falseBallsPerFrame()},
+            {"median_error_ratio", medianBallErrorRatio()},
+            {"balls_3m", balls3},
+            {"balls_5m", balls5},
+            {"percepts", ballPercepts},
+            {"false", falseBalls}}},
+          {"intersections",
+           {{"detections", intersections},
+            {"precision", intersections ? double(intersectionsCorrect) / intersections : 1.0}}},
+          {"penalty_mark",
+           {{"detections", penaltyMarks},
+            {"precision", penaltyMarks ? double(penaltyMarksCorrect) / penaltyMarks : 1.0}}}};
+}
+
+nlohmann::json PerceptionEvalResult::toJson() const {
+  nlohmann::json j = all.toJson();
+  nlohmann::json by = nlohmann::json::object();
+  for (const auto& name : lightingOrder) by[name] = byLighting.at(name).toJson();
+  j["by_lighting"] = by;
+  // Lighting independence: how much each figure drops from the brightest to the darkest preset
+  // (percentage points; for false balls per frame and the error ratio, the rise x 100).
+  if (byLighting.count("bright") && byLighting.count("dark")) {
+    const auto &b = byLighting.at("bright"), &d = byLighting.at("dark");
+    j["bright_to_dark_drop_points"] = {
+        {"lines.recall", 100 * (b.lineRecall() - d.lineRecall())},
+        {"lines.precision", 100 * (b.linePrecision() - d.linePrecision())},
+        {"circle.detection_rate", 100 * (b.circleRate() - d.circleRate())},
+        {"ball.recall_3m", 100 * (b.ballRecall3() - d.ballRecall3())},
+        {"ball.recall_5m", 100 * (b.ballRecall5() - d.ballRecall5())},
+        {"ball.false_per_frame", 100 * (d.falseBallsPerFrame() - b.falseBallsPerFrame())},
+        {"ball.median_error_ratio", 100 * (d.medianBallErrorRatio() - b.medianBallErrorRatio())}};
+  }
+  j["perception_ms_median"] = median(perceptionMs);
+  return j;
+}
+
+PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
+  SceneSpec spec;
+  spec.field = options.field;
+  spec.robots = {Eigen::Vector3d::Zero()};
+  spec.balls = {Eigen::Vector3d(0, 0, kBallRadius)};
+  World world(spec, options.seed);
+  CameraRenderer renderer(world.model());
+  std::vector<Lighting> lightings = options.lightings;
+  if (lightings.empty()) lightings.push_back(Lighting::parse("default", dataPath("config/lighting.json")));
+
+  PerceptionEvalResult result;
+  for (const auto& l : lightings) {
+    result.lightingOrder.push_back(l.name);
+    result.byLighting[l.name];
+  }
+  const VisionGeometry geometry = VisionGeometry::from(options.field);
+  const FieldModel& field = world.field();
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<double> uni(0, 1);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * uni(rng); };
+
+  for (int trial = 0; trial < options.trials; ++trial) {
+    // A random scene: pose anywhere on the field, head anywhere in its usual range.
+    const Eigen::Vector3d pose(uniform(-field.halfLength(), field.halfLength()),
+                               uniform(-field.halfWidth(), field.halfWidth()), uniform(-M_PI, M_PI));
+    JointArray posture = StandController::standPosture();
+    posture[HeadYaw] = uniform(-100, 100) * kDeg;
+    posture[HeadPitch] = uniform(-15, 25) * kDeg;
+    std::array<double, 6> off{};
+    for (double& v : off) v = uniform(-options.maxOffsetDeg, options.maxOffsetDeg) * kDeg;
+    const CameraCalibration offsets = CameraCalibration::fromArray(off);
+    world.setMiscalibration(0, offsets);
+    world.placeRobot(0, pose, posture);
+    // The ball: mostly somewhere in front of the head, at any distance up to 6 m.
+    // The ball: on the field (where the game keeps it), mostly somewhere in front of the head
+    // at any distance up to 6 m, never inside the robot.
+    Eigen::Vector2d ball(-20, -20);
+    auto onField = [&](const Eigen::Vector2d& b) {
+      return std::abs(b.x()) <= field.halfLength() && std::abs(b.y()) <= field.halfWidth() &&
+             (b - pose.head<2>()).norm() > 0.2;
+    };
+    const bool inFront = uni(rng) < options.ballProbability;
+    for (int attempt = 0; attempt < 20; ++attempt) {
+      Eigen::Vector2d b;
+      if (inFront) {
+        const double bearing = pose.z() + posture[HeadYaw] + uniform(-35, 35) * kDeg;
+        const double dist = 0.12 + 5.9 * std::pow(uni(rng), 0.8);
+        b = pose.head<2>() + dist * Eigen::Vector2d(std::cos(bearing), std::sin(bearing));
+      } else {
+        b = Eigen::Vector2d(uniform(-field.halfLength(), field.halfLength()), uniform(-field.halfWidth(), field.halfWidth()));
+      }
+      if (onField(b)) {
+        ball = b;
+        break;
+      }
+    }
+    world.placeBall(0, Eigen::Vector3d(ball.x(), ball.y(), kBallRadius));
+
+    const SensorFrame sensors = world.sensors(0);
+    const Eigen::Vector3d robotPose = world.robotPose(0);
+    for (CameraId camera : {CameraId::Top, CameraId::Bottom}) {
+      const CameraResolution res = world.cameraResolution(camera);
+      const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
+      const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in);
+      const FrameTruth truth = computeTruth(world, camera);
+      for (const Lighting& lighting : lightings) {
+        std::mt19937_64 noiseRng(options.seed * 1000003 + trial * 17 + static_cast<int>(camera));
+        const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera),
+                                                     res.width, res.height, lighting, camera, 0, noiseRng);
+        const VisionResult r = runVision(img, cm, geometry);
+        result.perceptionMs.push_back(r.stageMs.count("total") ? r.stageMs.at("total") : 0);
+        PerceptionFigures fig;
+        scoreFrame(world, camera, truth, r, robotPose, fig);
+        result.byLighting[lighting.name].add(fig);
+        result.all.add(fig);
+        if (!options.imagesDir.empty() && options.imagesEvery > 0 && trial % options.imagesEvery == 0) {
+          const cv::Mat annotated = annotateVision(rgbFromCameraImage(img), r, cm, camera == CameraId::Bottom ? 2 : 1);
+          char name[160];
+          std::snprintf(name, sizeof name, "/perception_%03d_%s_%s.png", trial, cameraName(camera), lighting.name.c_str());
+          writePng(options.imagesDir + name, annotated);
+        }
+        if (!options.failuresDir.empty()) {
+          std::string what;
+          if (fig.trueLinesFound < fig.trueLines) what += "_linemiss";
+          if (fig.detectedLinesMatched < fig.detectedLines) what += "_linefalse";
+          if (fig.circleFound < fig.circleFrames) what += "_circlemiss";
+          if (fig.circleFalse) what += "_circlefalse";
+          if (fig.found5 < fig.balls5) what += "_ballmiss";
+          if (fig.falseBalls) what += "_ballfalse";
+          if (!what.empty()) {
+            const cv::Mat annotated = annotateVision(rgbFromCameraImage(img), r, cm, camera == CameraId::Bottom ? 2 : 1);
+            char name[200];
+            std::snprintf(name, sizeof name, "/fail_%03d_%s_%s%s", trial, cameraName(camera), lighting.name.c_str(),
+                          what.c_str());
+            writePng(options.failuresDir + name + ".png", annotated);
+            writePng(options.failuresDir + name + "_raw.png", img);
+            // How to render this scene again.
+            const auto deg = offsets.toArray();
+            if (std::FILE* f = std::fopen((options.failuresDir + name + ".txt").c_str(), "w")) {
+              std::fprintf(f, "render --camera %s --pose %.4f,%.4f,%.3f --head %.3f,%.3f --ball %.3f,%.3f --lighting %s "
+                              "--miscalibration %.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                           cameraName(camera), pose.x(), pose.y(), pose.z() * 180 / M_PI, posture[HeadYaw] * 180 / M_PI,
+                           posture[HeadPitch] * 180 / M_PI, ball.x(), ball.y(), lighting.name.c_str(),
+                           deg[0] / kDeg, deg[1] / kDeg, deg[2] / kDeg, deg[3] / kDeg, deg[4] / kDeg, deg[5] / kDeg);
+              for (const auto& tl : truth.lines)
+                std::fprintf(f, "line %s vis %.2f img %.0f %.0f %.0f %.0f\n", tl.name.c_str(), tl.visibleLength,
+                             tl.imageFrom.x(), tl.imageFrom.y(), tl.imageTo.x(), tl.imageTo.y());
+              for (const auto& b : truth.balls5)
+                std::fprintf(f, "ball_px %.1f %.1f r %.1f dist %.2f\n", b.image.x(), b.image.y(), b.radiusPx, b.distance);
+              std::fclose(f);
+            }
+          }
+        }
+      }
+    }
+    if (options.progress) options.progress(trial + 1, options.trials);
+  }
+  return result;
+}
+
+}  // namespace nao::sim

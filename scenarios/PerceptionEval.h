@@ -1,0 +1,72 @@
+#pragma once
+// How well does the vision see what is there? Random robot poses and head angles over the
+// whole field, both cameras, a random ball, small injected camera offsets that the camera
+// model is told, balls on the field, each scene rendered under every lighting preset of the sweep (intensity,
+// colour temperature, hard shadows, sensor noise). The truth comes from the simulator's
+// field model and state (ground truth with ray-cast occlusion), never from the detector.
+//
+// Figures (design.md): lines.recall (true lines with >= 0.5 m visible within 4 m that some
+// detection matches: within 5 deg and 10 cm on the ground), lines.precision (detections that
+// match a field line), circle.detection_rate (frames with >= half of the circle in view
+// within 3 m where it is found within 0.3 m), ball.recall_3m / recall_5m (balls in view,
+// >= 75 % of the disc on the image, found within max(0.3 m, 20 % of the distance)),
+// ball.false_per_frame (ball percepts that match no ball), ball.median_error_ratio
+// (position error / distance of the found balls).
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "perception/FieldDimensions.h"
+#include "sim/Lighting.h"
+
+namespace nao::sim {
+
+struct PerceptionEvalOptions {
+  int trials = 300;                 // scenes; each is rendered by both cameras under every lighting
+  std::uint64_t seed = 1;
+  FieldDimensions field;
+  std::vector<Lighting> lightings;  // empty: the default preset
+  double maxOffsetDeg = 1.0;        // injected camera offsets, uniform in +-this, told to the model
+  double ballProbability = 0.85;    // of a scene having a ball placed in front of the robot
+  std::string imagesDir;            // non-empty: annotated frames (every imagesEvery-th scene)
+  int imagesEvery = 25;
+  std::string failuresDir;          // non-empty: annotated frames with a miss or a false detection
+  std::function<void(int done, int total)> progress;
+};
+
+struct PerceptionFigures {
+  int frames = 0;
+  int trueLines = 0, trueLinesFound = 0;
+  int detectedLines = 0, detectedLinesMatched = 0;
+  int circleFrames = 0, circleFound = 0, circleFalse = 0;
+  int balls3 = 0, found3 = 0, balls5 = 0, found5 = 0;
+  int ballPercepts = 0, falseBalls = 0;
+  std::vector<double> ballErrorRatios;
+  int intersections = 0, intersectionsCorrect = 0;  // position within 0.3 m and the same type
+  int penaltyMarks = 0, penaltyMarksCorrect = 0;
+  double lineRecall() const { return trueLines ? double(trueLinesFound) / trueLines : 1; }
+  double linePrecision() const { return detectedLines ? double(detectedLinesMatched) / detectedLines : 1; }
+  double circleRate() const { return circleFrames ? double(circleFound) / circleFrames : 1; }
+  double ballRecall3() const { return balls3 ? double(found3) / balls3 : 1; }
+  double ballRecall5() const { return balls5 ? double(found5) / balls5 : 1; }
+  double falseBallsPerFrame() const { return frames ? double(falseBalls) / frames : 0; }
+  double medianBallErrorRatio() const;
+  void add(const PerceptionFigures& o);
+  nlohmann::json toJson() const;
+};
+
+struct PerceptionEvalResult {
+  PerceptionFigures all;
+  std::map<std::string, PerceptionFigures> byLighting;
+  std::vector<std::string> lightingOrder;
+  std::vector<double> perceptionMs;  // runVision total per frame
+  nlohmann::json toJson() const;
+};
+
+PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options);
+
+}  // namespace nao::sim

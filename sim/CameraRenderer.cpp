@@ -1,0 +1,203 @@
+#include "sim/CameraRenderer.h"
+
+#include <GL/osmesa.h>
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "robot/Error.h"
+#include "sim/ImageIO.h"
+
+namespace nao::sim {
+
+namespace {
+
+constexpr double kSunStrength = 0.75;  // diffuse sun at intensity 1 (white surfaces facing it ~0.75)
+constexpr double kSunSpecular = 0.15;  // a little gloss on the ball and the posts
+constexpr double kSunDistance = 15.0;  // m: the sun's (shadow camera's) distance from the field centre
+constexpr int kMaxSceneGeoms = 20000;
+
+const char* const kWhere = "renderer";
+
+}  // namespace
+
+void applyLighting(mjModel* m, mjData* d, const Lighting& lighting) {
+  const Eigen::Vector3d c = lighting.colour();
+  const double el = lighting.elevation * std::numbers::pi / 180, az = lighting.azimuth * std::numbers::pi / 180;
+  // Direction of travel of the sunlight: from azimuth/elevation towards the field.
+  const Eigen::Vector3d dir(-std::cos(el) * std::cos(az), -std::cos(el) * std::sin(az), -std::sin(el));
+  for (int k = 0; k < 3; ++k) {
+    m->vis.headlight.ambient[k] = static_cast<float>(lighting.ambient * lighting.intensity * c[k]);
+    m->vis.headlight.diffuse[k] = 0;
+    m->vis.headlight.specular[k] = 0;
+  }
+  m->vis.headlight.active = 1;
+  const int sun = mj_name2id(m, mjOBJ_LIGHT, "sun");
+  if (sun < 0) return;
+  for (int k = 0; k < 3; ++k) {
+    m->light_diffuse[3 * sun + k] = static_cast<float>(kSunStrength * lighting.intensity * c[k]);
+    m->light_specular[3 * sun + k] = static_cast<float>(kSunSpecular * lighting.intensity * c[k]);
+    m->light_ambient[3 * sun + k] = 0;
+    m->light_dir[3 * sun + k] = dir[k];
+    m->light_pos[3 * sun + k] = -kSunDistance * dir[k];
+    // A world light's frame is its model frame; write it so no mj_forward is needed.
+    if (d && m->light_bodyid[sun] == 0) {
+      d->light_xdir[3 * sun + k] = dir[k];
+      d->light_xpos[3 * sun + k] = -kSunDistance * dir[k];
+    }
+  }
+  m->light_directional[sun] = 1;
+  m->light_active[sun] = 1;
+  m->light_castshadow[sun] = lighting.shadows ? 1 : 0;
+}
+
+void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng) {
+  if (!(sigma > 0)) return;
+  // Four 16-bit uniforms from one 64-bit draw: their sum has variance 4 * 65536^2 / 12.
+  const double scaleY = sigma / (65536.0 * std::sqrt(4.0 / 12.0)), scaleUV = scaleY / 2;
+  auto sample = [&](double scale) {
+    const std::uint64_t bits = rng();
+    const double sum = static_cast<double>(bits & 0xffff) + static_cast<double>((bits >> 16) & 0xffff) +
+                       static_cast<double>((bits >> 32) & 0xffff) + static_cast<double>(bits >> 48);
+    return (sum - 2 * 65535.0) * scale;
+  };
+  std::uint8_t* p = image.yuyv.data();
+  for (std::size_t i = 0; i + 3 < image.yuyv.size(); i += 4) {
+    for (int k = 0; k < 4; ++k) {
+      const double v = p[i + k] + sample(k % 2 == 0 ? scaleY : scaleUV);
+      p[i + k] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
+    }
+  }
+}
+
+struct CameraRenderer::Impl {
+  OSMesaContext context = nullptr;
+  std::vector<std::uint8_t> buffer;  // the default framebuffer (MuJoCo draws into its own FBO)
+  int bufferWidth = 0, bufferHeight = 0;
+  const mjModel* model = nullptr;
+  std::array<int, 4> modelSize{};  // ngeom, nmesh, ntex, nmat: tells a new model at an old address
+  bool haveContext = false;
+  mjrContext con;
+  mjvScene scene;
+  mjvOption option;
+  mjvCamera camera;
+  std::vector<std::uint8_t> pixels;
+
+  void makeCurrent() {
+    if (!OSMesaMakeCurrent(context, buffer.data(), GL_UNSIGNED_BYTE, bufferWidth, bufferHeight))
+      throw Error(kWhere, "OSMesaMakeCurrent failed");
+  }
+
+  void bind(const mjModel* m) {
+    const std::array<int, 4> size{m->ngeom, m->nmesh, m->ntex, m->nmat};
+    if (m == model && size == modelSize && haveContext) {
+      makeCurrent();
+      return;
+    }
+    const int width = std::max(1, m->vis.global.offwidth), height = std::max(1, m->vis.global.offheight);
+    if (width > bufferWidth || height > bufferHeight) {
+      bufferWidth = std::max(width, bufferWidth);
+      bufferHeight = std::max(height, bufferHeight);
+      buffer.assign(static_cast<std::size_t>(bufferWidth) * bufferHeight * 4, 0);
+    }
+    makeCurrent();
+    if (haveContext) {
+      mjr_freeContext(&con);
+      mjv_freeScene(&scene);
+    }
+    mjr_defaultContext(&con);
+    mjr_makeContext(m, &con, mjFONTSCALE_100);
+    mjr_setBuffer(mjFB_OFFSCREEN, &con);
+    if (con.currentBuffer != mjFB_OFFSCREEN) throw Error(kWhere, "no offscreen framebuffer (OpenGL too old?)");
+    mjv_defaultScene(&scene);
+    mjv_makeScene(m, &scene, kMaxSceneGeoms);
+    model = m;
+    modelSize = size;
+    haveContext = true;
+  }
+
+  ~Impl() {
+    if (context) {
+      if (haveContext && OSMesaMakeCurrent(context, buffer.data(), GL_UNSIGNED_BYTE, bufferWidth, bufferHeight)) {
+        mjr_freeContext(&con);
+        mjv_freeScene(&scene);
+      }
+      OSMesaDestroyContext(context);
+    }
+  }
+};
+
+CameraRenderer::CameraRenderer(const mjModel* m) : impl_(std::make_unique<Impl>()) {
+  Impl& I = *impl_;
+  I.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 8, nullptr);
+  if (!I.context) throw Error(kWhere, "OSMesaCreateContextExt failed");
+  // Only what a camera would see: no sites, joints, tendons, rangefinder rays, contact markers;
+  // geom groups 0-2 (groups 3-5 hold collision-only geoms).
+  mjv_defaultOption(&I.option);
+  for (int g = 0; g < mjNGROUP; ++g) {
+    I.option.sitegroup[g] = 0;
+    I.option.geomgroup[g] = g < 3;
+  }
+  for (int f : {mjVIS_JOINT, mjVIS_CAMERA, mjVIS_ACTUATOR, mjVIS_LIGHT, mjVIS_TENDON, mjVIS_RANGEFINDER,
+                mjVIS_CONSTRAINT, mjVIS_INERTIA, mjVIS_PERTFORCE, mjVIS_PERTOBJ, mjVIS_CONTACTPOINT, mjVIS_CONTACTFORCE,
+                mjVIS_TRANSPARENT, mjVIS_AUTOCONNECT, mjVIS_COM, mjVIS_SELECT})
+    I.option.flags[f] = 0;
+  I.option.flags[mjVIS_TEXTURE] = 1;
+  I.option.flags[mjVIS_STATIC] = 1;
+  mjv_defaultCamera(&I.camera);
+  I.bind(m);
+}
+
+CameraRenderer::~CameraRenderer() = default;
+
+cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int width, int height,
+                                  const Lighting& lighting) {
+  Impl& I = *impl_;
+  if (mjCameraId < 0 || mjCameraId >= m->ncam)
+    throw Error(kWhere,
+                "camera id " + std::to_string(mjCameraId) + " out of range (" + std::to_string(m->ncam) + " cameras)");
+  I.bind(m);
+  if (width <= 0 || height <= 0 || width > I.con.offWidth || height > I.con.offHeight)
+    throw Error(kWhere, "image size " + std::to_string(width) + "x" + std::to_string(height) +
+                            " exceeds the offscreen buffer " + std::to_string(I.con.offWidth) + "x" +
+                            std::to_string(I.con.offHeight) + " (SceneSpec camera resolutions)");
+  applyLighting(m, d, lighting);
+  I.camera.type = mjCAMERA_FIXED;
+  I.camera.fixedcamid = mjCameraId;
+  mjv_updateScene(m, d, &I.option, nullptr, &I.camera, mjCAT_ALL, &I.scene);
+  I.scene.flags[mjRND_SHADOW] = lighting.shadows ? 1 : 0;
+  I.scene.flags[mjRND_REFLECTION] = 0;
+  I.scene.flags[mjRND_SKYBOX] = 1;
+  I.scene.flags[mjRND_FOG] = 0;
+  I.scene.flags[mjRND_HAZE] = 0;
+  I.scene.flags[mjRND_WIREFRAME] = 0;
+  I.scene.flags[mjRND_SEGMENT] = 0;
+  I.scene.flags[mjRND_IDCOLOR] = 0;
+  I.scene.flags[mjRND_CULL_FACE] = 1;  // a camera inside its head geom sees out, not the head's inside
+  const mjrRect viewport{0, 0, width, height};
+  mjr_setBuffer(mjFB_OFFSCREEN, &I.con);
+  mjr_render(viewport, &I.scene, &I.con);
+  I.pixels.resize(static_cast<std::size_t>(width) * height * 3);
+  mjr_readPixels(I.pixels.data(), nullptr, viewport, &I.con);
+  // OpenGL rows run bottom-up; flip so that row 0 is the top.
+  cv::Mat rgb(height, width, CV_8UC3);
+  const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
+  for (int r = 0; r < height; ++r)
+    std::copy_n(I.pixels.data() + (height - 1 - r) * rowBytes, rowBytes, rgb.ptr<std::uint8_t>(r));
+  return rgb;
+}
+
+CameraImage CameraRenderer::renderImage(mjModel* m, mjData* d, int mjCameraId, int width, int height,
+                                        const Lighting& lighting, CameraId camera, double timestamp,
+                                        std::mt19937_64& rng) {
+  if (width % 2 != 0) throw Error(kWhere, "YUYV needs an even image width, got " + std::to_string(width));
+  CameraImage image = cameraImageFromRgb(renderRgb(m, d, mjCameraId, width, height, lighting), camera, timestamp);
+  addSensorNoise(image, lighting.noise, rng);
+  return image;
+}
+
+}  // namespace nao::sim

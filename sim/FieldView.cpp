@@ -1,0 +1,83 @@
+#include "sim/FieldView.h"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <string>
+
+#include "robot/Error.h"
+
+namespace nao::sim {
+
+namespace {
+
+constexpr int kShift = 4;              // sub-pixel bits for OpenCV drawing
+constexpr double kRobotRadius = 0.15;  // m: a NAO's footprint, roughly
+const cv::Scalar kCarpet(30, 125, 40), kLine(245, 245, 245), kGoal(250, 250, 250), kNet(170, 170, 170);
+const cv::Scalar kRobot(40, 90, 220), kHeading(255, 255, 255), kBall(255, 140, 0), kBallRim(255, 255, 255);
+
+}  // namespace
+
+cv::Mat drawFieldView(const FieldModel& field, const std::vector<Eigen::Vector3d>& robotPoses,
+                      const std::vector<Eigen::Vector3d>& balls, int pixelsPerMetre) {
+  if (pixelsPerMetre < 5 || pixelsPerMetre > 1000)
+    throw Error("FieldView", "pixelsPerMetre must be in 5..1000, got " + std::to_string(pixelsPerMetre));
+  const FieldDimensions& d = field.dims;
+  const double ppm = pixelsPerMetre;
+  const double cx = d.length / 2 + d.borderStripWidth, cy = d.width / 2 + d.borderStripWidth;
+  cv::Mat image(static_cast<int>(std::lround(2 * cy * ppm)), static_cast<int>(std::lround(2 * cx * ppm)), CV_8UC3,
+                kCarpet);
+  // Field (x, y) -> fixed-point pixel.
+  auto px = [&](double x, double y) {
+    return cv::Point(static_cast<int>(std::lround((x + cx) * ppm * (1 << kShift))),
+                     static_cast<int>(std::lround((cy - y) * ppm * (1 << kShift))));
+  };
+  auto len = [&](double metres) { return static_cast<int>(std::lround(metres * ppm * (1 << kShift))); };
+  const int lineThickness = std::max(1, static_cast<int>(std::lround(d.lineWidth * ppm)));
+
+  for (const FieldLine& l : field.lines)
+    cv::line(image, px(l.from.x(), l.from.y()), px(l.to.x(), l.to.y()), kLine, lineThickness, cv::LINE_AA, kShift);
+  cv::circle(image, px(field.centerCircleCenter.x(), field.centerCircleCenter.y()), len(field.centerCircleRadius),
+             kLine, lineThickness, cv::LINE_AA, kShift);
+  const double h = d.penaltyCrossSize / 2;
+  auto cross = [&](const Eigen::Vector2d& p, bool both) {
+    cv::line(image, px(p.x() - h, p.y()), px(p.x() + h, p.y()), kLine, lineThickness, cv::LINE_AA, kShift);
+    if (both) cv::line(image, px(p.x(), p.y() - h), px(p.x(), p.y() + h), kLine, lineThickness, cv::LINE_AA, kShift);
+  };
+  for (const Eigen::Vector2d& p : field.penaltyCrosses) cross(p, true);
+  cross(field.centerMark, false);
+
+  // Goals: net outline behind the goal line, posts as white dots.
+  const double py = d.goalInnerWidth / 2 + d.goalPostDiameter / 2;
+  for (double side : {-1.0, 1.0}) {
+    const double gx = side * d.length / 2, bx = side * (d.length / 2 + d.goalDepth);
+    cv::line(image, px(gx, py), px(bx, py), kNet, 1, cv::LINE_AA, kShift);
+    cv::line(image, px(bx, py), px(bx, -py), kNet, 1, cv::LINE_AA, kShift);
+    cv::line(image, px(bx, -py), px(gx, -py), kNet, 1, cv::LINE_AA, kShift);
+    for (double sy : {-1.0, 1.0})
+      cv::circle(image, px(gx, sy * py), std::max(len(d.goalPostDiameter / 2), 2 << kShift), kGoal, cv::FILLED,
+                 cv::LINE_AA, kShift);
+  }
+
+  for (std::size_t i = 0; i < robotPoses.size(); ++i) {
+    const Eigen::Vector3d& r = robotPoses[i];
+    if (!r.allFinite()) continue;
+    const int radius = std::max(len(kRobotRadius), 4 << kShift);
+    cv::circle(image, px(r.x(), r.y()), radius, kRobot, cv::FILLED, cv::LINE_AA, kShift);
+    const double reach = std::max(kRobotRadius * 1.6, 8 / ppm);
+    cv::line(image, px(r.x(), r.y()), px(r.x() + reach * std::cos(r.z()), r.y() + reach * std::sin(r.z())), kHeading,
+             std::max(1, lineThickness / 2), cv::LINE_AA, kShift);
+    const cv::Point label = px(r.x() + kRobotRadius, r.y() - kRobotRadius);
+    cv::putText(image, std::to_string(i), cv::Point(label.x >> kShift, label.y >> kShift), cv::FONT_HERSHEY_SIMPLEX,
+                std::max(0.3, ppm / 160), kHeading, 1, cv::LINE_AA);
+  }
+  for (const Eigen::Vector3d& b : balls) {
+    if (!b.allFinite()) continue;
+    const int radius = std::max(len(0.05), 3 << kShift);
+    cv::circle(image, px(b.x(), b.y()), radius, kBall, cv::FILLED, cv::LINE_AA, kShift);
+    cv::circle(image, px(b.x(), b.y()), radius, kBallRim, 1, cv::LINE_AA, kShift);
+  }
+  return image;
+}
+
+}  // namespace nao::sim

@@ -1,0 +1,133 @@
+#include "sim/GroundTruth.h"
+
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <string>
+
+#include "sim/SceneBuilder.h"
+#include "sim/World.h"
+
+namespace nao::sim {
+
+std::optional<Eigen::Vector2d> truePixel(const World& world, int robot, CameraId camera, const Eigen::Vector3d& pField) {
+  const Eigen::Isometry3d cam = world.cameraPose(robot, camera);
+  const Eigen::Vector3d p = cam.inverse() * pField;  // B-Human camera axes
+  if (p.x() <= 1e-6) return std::nullopt;
+  const CameraResolution res = world.cameraResolution(camera);
+  const double f = (res.height / 2.0) / std::tan(world.cameraFovY() / 2);
+  return Eigen::Vector2d(res.width / 2.0 - f * p.y() / p.x(), res.height / 2.0 - f * p.z() / p.x());
+}
+
+namespace {
+
+// allowBody: a body whose surface the point lies on (a ball), so hitting it means arriving.
+bool visibleImpl(const World& world, int robot, CameraId camera, const Eigen::Vector3d& pField, double maxDistance,
+                 const std::string& allowBody) {
+  const auto px = truePixel(world, robot, camera, pField);
+  const CameraResolution res = world.cameraResolution(camera);
+  if (!px || px->x() < 0 || px->y() < 0 || px->x() >= res.width || px->y() >= res.height) return false;
+  const Eigen::Vector3d eye = world.cameraPose(robot, camera).translation();
+  if (std::hypot(pField.x() - eye.x(), pField.y() - eye.y()) > maxDistance) return false;
+  // Cast a ray from the optical centre; the camera sits inside its own head, so the first
+  // hits may be the robot's own geoms, which hide the point only when they are not the head.
+  const mjModel* m = world.model();
+  const mjData* d = world.data();
+  const std::string own = robotPrefix(robot);
+  const std::string head = own + "Head";
+  Eigen::Vector3d from = eye;
+  for (int hop = 0; hop < 8; ++hop) {
+    const Eigen::Vector3d dir = pField - from;
+    const mjtNum pnt[3] = {from.x(), from.y(), from.z()}, vec[3] = {dir.x(), dir.y(), dir.z()};
+    int geom = -1;
+    const mjtNum hit = mj_ray(m, d, pnt, vec, nullptr, 1, -1, &geom);
+    if (hit < 0 || hit >= 0.995) return true;  // vec spans the whole way: hit is a fraction of it
+    const char* body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[geom]);
+    const char* name = mj_id2name(m, mjOBJ_GEOM, geom);
+    const std::string geomName = name ? name : "";
+    // The paint lies on the carpet, a ball point on the ball's own surface: not occluders.
+    if (geomName.rfind("field/", 0) == 0) return true;
+    if (body && !allowBody.empty() && std::string(body) == allowBody) return true;
+    if (!body || std::string(body) != head) return false;
+    from += (hit + 1e-4) * dir;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool trulyVisible(const World& world, int robot, CameraId camera, const Eigen::Vector3d& pField, double maxDistance) {
+  return visibleImpl(world, robot, camera, pField, maxDistance, "");
+}
+
+VisibleFeatures visibleFeatures(const World& world, int robot, CameraId camera, double maxDistance) {
+  VisibleFeatures out;
+  const FieldModel& field = world.field();
+  for (int i = 0; i < static_cast<int>(field.lines.size()); ++i) {
+    const FieldLine& l = field.lines[i];
+    const double len = (l.to - l.from).norm();
+    const int n = std::max(2, static_cast<int>(len / 0.02) + 1);
+    int bestStart = -1, bestLen = 0, runStart = -1;
+    for (int k = 0; k <= n; ++k) {
+      bool vis = false;
+      if (k < n) {
+        const Eigen::Vector2d p = l.from + (l.to - l.from) * (static_cast<double>(k) / (n - 1));
+        vis = trulyVisible(world, robot, camera, Eigen::Vector3d(p.x(), p.y(), 0.001), maxDistance);
+      }
+      if (vis && runStart < 0) runStart = k;
+      if (!vis && runStart >= 0) {
+        if (k - runStart > bestLen) bestLen = k - runStart, bestStart = runStart;
+        runStart = -1;
+      }
+    }
+    if (bestLen < 2) continue;
+    VisibleLine v;
+    v.index = i;
+    v.name = l.name;
+    v.from = l.from + (l.to - l.from) * (static_cast<double>(bestStart) / (n - 1));
+    v.to = l.from + (l.to - l.from) * (static_cast<double>(bestStart + bestLen - 1) / (n - 1));
+    v.visibleLength = (v.to - v.from).norm();
+    v.imageFrom = *truePixel(world, robot, camera, Eigen::Vector3d(v.from.x(), v.from.y(), 0));
+    v.imageTo = *truePixel(world, robot, camera, Eigen::Vector3d(v.to.x(), v.to.y(), 0));
+    out.lines.push_back(v);
+  }
+  for (const auto& x : field.intersections) {
+    const Eigen::Vector3d p(x.position.x(), x.position.y(), 0.001);
+    if (trulyVisible(world, robot, camera, p, maxDistance))
+      out.intersections.push_back({x, *truePixel(world, robot, camera, p)});
+  }
+  int circleVisible = 0;
+  constexpr int kCircleSamples = 180;
+  for (int k = 0; k < kCircleSamples; ++k) {
+    const double a = 2 * M_PI * k / kCircleSamples;
+    const Eigen::Vector2d p = field.centerCircleCenter + field.centerCircleRadius * Eigen::Vector2d(std::cos(a), std::sin(a));
+    circleVisible += trulyVisible(world, robot, camera, Eigen::Vector3d(p.x(), p.y(), 0.001), maxDistance);
+  }
+  out.centreCircleFractionVisible = static_cast<double>(circleVisible) / kCircleSamples;
+  for (const auto& c : field.penaltyCrosses)
+    if (trulyVisible(world, robot, camera, Eigen::Vector3d(c.x(), c.y(), 0.001), maxDistance)) out.penaltyCross = c;
+  const Eigen::Isometry3d cam = world.cameraPose(robot, camera);
+  const CameraResolution res = world.cameraResolution(camera);
+  const double f = (res.height / 2.0) / std::tan(world.cameraFovY() / 2);
+  for (int b = 0; b < world.ballCount(); ++b) {
+    const Eigen::Vector3d centre = world.ballPosition(b);
+    // The ball counts as visible when its centre or the point nearest the camera is unhidden.
+    const std::string ball = "ball" + std::to_string(b);
+    const Eigen::Vector3d towardCamera = centre + kBallRadius * (cam.translation() - centre).normalized();
+    if (!visibleImpl(world, robot, camera, centre, maxDistance, ball) &&
+        !visibleImpl(world, robot, camera, towardCamera, maxDistance, ball))
+      continue;
+    const auto px = truePixel(world, robot, camera, centre);
+    if (!px) continue;
+    VisibleBall v;
+    v.index = b;
+    v.position = centre;
+    v.image = *px;
+    v.distance = std::hypot(centre.x() - cam.translation().x(), centre.y() - cam.translation().y());
+    v.radiusPx = f * kBallRadius / (cam.inverse() * centre).x();
+    out.balls.push_back(v);
+  }
+  return out;
+}
+
+}  // namespace nao::sim

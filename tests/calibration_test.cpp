@@ -1,0 +1,375 @@
+// The camera calibration without the simulator: exact synthetic samples (the solvers must
+// recover the injected offsets), the two solvers against each other, the image side (goal box
+// finder, Hough refinement, rejections) on images painted from the camera model, and the store.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "controllers/StandController.h"
+#include "perception/calibration/CalibrationStore.h"
+#include "perception/calibration/Calibrator.h"
+#include "perception/calibration/SampleExtraction.h"
+#include "perception/calibration/SyntheticSamples.h"
+#include "robot/Error.h"
+
+namespace nao::calibration {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+FieldDimensions field() { return FieldDimensions{}; }
+
+// Exact samples of the own goal box's right side from the calibration position, at the
+// planned views (5 pan angles per camera), for the true offsets `truth`.
+std::vector<CalibrationSample> exactSamples(const CameraCalibration& truth, const Eigen::Vector3d& poseError = {0, 0, 0},
+                                            const ViewPlanOptions& plan = {}) {
+  const GoalBoxSide side = ownGoalBoxSide(field(), -1);
+  const Eigen::Vector3d pos = calibrationPosition(side, plan);
+  std::vector<CalibrationSample> out;
+  for (const CalibrationView& v : planViews(side, pos.head<2>(), StandController::standPosture(), plan)) {
+    SyntheticScene scene;
+    scene.side = side;
+    scene.robotPose = v.robotPose + poseError;
+    scene.imuAngle = {0.01, -0.02};  // a slightly tilted torso: the IMU angles enter the model
+    JointArray joints = StandController::standPosture();
+    joints[HeadYaw] = v.headYaw;
+    joints[HeadPitch] = v.headPitch;
+    const auto s = synthesizeSample(scene, joints, v.camera, truth, CameraIntrinsics::nominal(v.camera));
+    EXPECT_TRUE(s.has_value());
+    if (s) out.push_back(*s);
+  }
+  return out;
+}
+
+CameraCalibration offsetsDeg(double br, double bp, double tr, double tp, double cr, double cp) {
+  return CameraCalibration::fromArray({br * kDeg, bp * kDeg, tr * kDeg, tp * kDeg, cr * kDeg, cp * kDeg});
+}
+
+void expectNear(const Params& x, const CameraCalibration& truth, double tolDeg, const char* what) {
+  const auto t = truth.toArray();
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR(x[k] / kDeg, t[k] / kDeg, tolDeg) << what << ": " << CameraCalibration::kNames[k];
+}
+
+TEST(CalibrationSolvers, ExactSamplesRecoverTheTruth) {
+  const CameraCalibration truths[] = {offsetsDeg(2.1, -1.4, -2.7, 2.9, 1.3, -2.2), offsetsDeg(-3, 3, 3, -3, -3, 3),
+                                      offsetsDeg(0.5, 0.2, -0.4, 0.1, 0.0, 0.7)};
+  for (const auto& truth : truths) {
+    // The robot stands 8 cm / 4 deg off where it planned to: the cost must not care.
+    const CalibrationCost cost(exactSamples(truth, {0.06, -0.05, 4 * kDeg}), CostOptions::forField(field()));
+    EXPECT_EQ(cost.residualCount(), 40);  // 10 samples: two right angles, depth, parallelism
+    const SolverResult gn = solveGaussNewton(cost);
+    const SolverResult ceres = solveCeres(cost);
+    ASSERT_TRUE(gn.converged) << gn.message;
+    ASSERT_TRUE(ceres.converged) << ceres.message;
+    expectNear(gn.x, truth, 1e-4, "gauss-newton");
+    expectNear(ceres.x, truth, 1e-4, "ceres");
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(gn.x[k] / kDeg, ceres.x[k] / kDeg, 0.02);
+    EXPECT_LT(gn.finalCost, 1e-12);
+    EXPECT_LT(gn.seconds, 0.2);
+    EXPECT_LT(ceres.seconds, 0.2);
+  }
+}
+
+TEST(CalibrationSolvers, NoOffsetsStayAtZero) {
+  const CalibrationCost cost(exactSamples(CameraCalibration{}), CostOptions::forField(field()));
+  const SolverResult gn = solveGaussNewton(cost);
+  ASSERT_TRUE(gn.converged);
+  expectNear(gn.x, CameraCalibration{}, 1e-4, "gauss-newton");
+}
+
+// With measurement noise the solvers still agree (same residuals, same minimum) and stay close.
+TEST(CalibrationSolvers, NoisySamplesSolversAgree) {
+  const CameraCalibration truth = offsetsDeg(1.2, -2.3, 0.7, 1.9, -1.1, 2.6);
+  std::vector<CalibrationSample> samples = exactSamples(truth);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0, 0.1);  // px on each end of each edge
+  for (auto& s : samples)
+    for (auto& l : s.lines)
+      for (ImageLine* e : {&l.edgeA, &l.edgeB}) {
+        e->from += Eigen::Vector2d(noise(rng), noise(rng));
+        e->to += Eigen::Vector2d(noise(rng), noise(rng));
+      }
+  CalibratorOptions o;
+  o.cost = CostOptions::forField(field());
+  o.solver = SolverKind::GaussNewton;
+  const CalibrationSolution gn = solveCalibration(samples, o);
+  o.solver = SolverKind::Ceres;
+  const CalibrationSolution ceres = solveCalibration(samples, o);
+  ASSERT_TRUE(gn.solver.converged && ceres.solver.converged);
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(gn.solver.x[k] / kDeg, ceres.solver.x[k] / kDeg, 0.02);
+  expectNear(gn.solver.x, truth, 0.25, "noisy gauss-newton");
+  EXPECT_TRUE(gn.accepted) << gn.reason;
+}
+
+// The body and camera offsets are told apart only by different pan angles.
+TEST(CalibrationSolvers, OnePanAngleIsNotEnough) {
+  ViewPlanOptions plan;
+  plan.topYawsDeg = {0, 0, 0};
+  plan.bottomYawsDeg = {0, 0, 0};
+  CalibratorOptions o;
+  o.cost = CostOptions::forField(field());
+  EXPECT_THROW(solveCalibration(exactSamples(CameraCalibration{}, {0, 0, 0}, plan), o), Error);
+  plan.topYawsDeg = {-30, 30};
+  EXPECT_THROW(solveCalibration(exactSamples(CameraCalibration{}, {0, 0, 0}, plan), o), Error);  // 2 < 3 samples
+}
+
+// A solution whose residuals are too large is refused by the calibrator and by the store.
+TEST(CalibrationSolvers, InconsistentSamplesAreRefused) {
+  std::vector<CalibrationSample> samples = exactSamples(offsetsDeg(1, 1, 1, 1, 1, 1));
+  // Every sample's long lines skewed by a few pixels: no offsets explain them.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> skew(-6, 6);
+  for (auto& s : samples)
+    for (int l : {LongLine1, LongLine2}) {
+      const double d = skew(rng);
+      s.lines[l].edgeA.to.x() += d;
+      s.lines[l].edgeB.to.x() += d;
+    }
+  CalibratorOptions o;
+  o.cost = CostOptions::forField(field());
+  o.outlierFactor = 1e9;  // no outlier step: all samples are equally bad
+  const CalibrationSolution sol = solveCalibration(samples, o);
+  EXPECT_FALSE(sol.accepted);
+  EXPECT_NE(sol.reason.find("exceed"), std::string::npos) << sol.reason;
+
+  const auto dir = std::filesystem::temp_directory_path() / "nao_calibration_refuse_test";
+  std::filesystem::remove_all(dir);
+  CalibrationStore store(dir.string());
+  CalibrationRecord rec;
+  rec.offsets = sol.offsets;
+  rec.rmsAngleDeg = sol.rmsAngleDeg;
+  rec.rmsDepthM = sol.rmsDepthM;
+  rec.converged = sol.solver.converged;
+  const SaveOutcome saved = store.save("refused-head", rec);
+  EXPECT_FALSE(saved.saved);
+  EXPECT_NE(saved.reason.find("refused"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(store.pathFor("refused-head")));
+  std::filesystem::remove_all(dir);
+}
+
+// One grossly wrong sample among good ones is dropped after the first solve.
+TEST(CalibrationSolvers, AnOutlierSampleIsDropped) {
+  const CameraCalibration truth = offsetsDeg(-1, 2, 1, -2, 2, 1);
+  std::vector<CalibrationSample> samples = exactSamples(truth);
+  samples[2].lines[ShortLine].edgeA.to.y() += 15;
+  samples[2].lines[ShortLine].edgeB.to.y() += 15;
+  CalibratorOptions o;
+  o.cost = CostOptions::forField(field());
+  const CalibrationSolution sol = solveCalibration(samples, o);
+  ASSERT_EQ(sol.dropped.size(), 1u);
+  EXPECT_EQ(sol.dropped[0].first, 2);
+  expectNear(sol.solver.x, truth, 1e-4, "without the outlier");
+  EXPECT_TRUE(sol.accepted);
+}
+
+// ---- The image side, on images painted from the camera model ----
+
+// A YUYV image of grass with the given ground quadrilaterals (robot frame) painted white,
+// anti-aliased by drawing at 8x and averaging; `blocks` are dark image rectangles on top.
+CameraImage paint(const CameraMatrix& cm, const std::vector<std::array<Eigen::Vector2d, 4>>& quads,
+                  const std::vector<cv::Rect>& blocks = {}) {
+  const int s = 8, w = cm.intrinsics.width, h = cm.intrinsics.height;
+  constexpr int kShift = 4;  // fractional bits of the polygon corners
+  cv::Mat big(h * s, w * s, CV_8UC3, cv::Scalar(45, 110, 40));
+  for (const auto& q : quads) {
+    // Clip to points well in front of the camera (all used here are).
+    std::vector<cv::Point> pts;
+    for (const auto& p : q) {
+      const auto px = cm.projectGround(p);
+      if (!px) return {};
+      // Pixel centres are at i + 0.5 here and at integer i in OpenCV.
+      pts.emplace_back(static_cast<int>(std::lround((px->x() * s - 0.5) * (1 << kShift))),
+                       static_cast<int>(std::lround((px->y() * s - 0.5) * (1 << kShift))));
+    }
+    cv::fillConvexPoly(big, pts, cv::Scalar(220, 215, 205), cv::LINE_8, kShift);
+  }
+  for (const auto& b : blocks) cv::rectangle(big, cv::Rect(b.x * s, b.y * s, b.width * s, b.height * s), cv::Scalar(60, 60, 60), cv::FILLED);
+  cv::Mat rgb;
+  cv::resize(big, rgb, cv::Size(w, h), 0, 0, cv::INTER_AREA);
+  // For looking at them: NAO_TEST_IMAGES=DIR.
+  if (const char* dir = std::getenv("NAO_TEST_IMAGES")) {
+    static int n = 0;
+    cv::Mat bgr;
+    cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+    cv::imwrite(std::string(dir) + "/painted_" + std::to_string(n++) + ".png", bgr);
+  }
+  CameraImage img;
+  img.width = w;
+  img.height = h;
+  img.yuyv.resize(static_cast<std::size_t>(w) * h * 2);
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> n(0, 1.5);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; x += 2) {
+      double yy[2], u = 0, v = 0;
+      for (int k = 0; k < 2; ++k) {
+        const cv::Vec3b c = rgb.at<cv::Vec3b>(y, x + k);
+        const double r = c[0], g = c[1], b = c[2];
+        yy[k] = 0.299 * r + 0.587 * g + 0.114 * b + n(rng);
+        u += (-0.169 * r - 0.331 * g + 0.5 * b + 128) / 2;
+        v += (0.5 * r - 0.419 * g - 0.081 * b + 128) / 2;
+      }
+      std::uint8_t* p = img.yuyv.data() + (static_cast<std::size_t>(y) * w + x) * 2;
+      p[0] = static_cast<std::uint8_t>(std::clamp(yy[0], 0.0, 255.0));
+      p[1] = static_cast<std::uint8_t>(std::clamp(u, 0.0, 255.0));
+      p[2] = static_cast<std::uint8_t>(std::clamp(yy[1], 0.0, 255.0));
+      p[3] = static_cast<std::uint8_t>(std::clamp(v, 0.0, 255.0));
+    }
+  return img;
+}
+
+// The paint of a line between centre points a and b (robot frame), width w.
+std::array<Eigen::Vector2d, 4> stripe(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double w) {
+  const Eigen::Vector2d d = (b - a).normalized(), n(-d.y(), d.x());
+  const Eigen::Vector2d a2 = a - w / 2 * d, b2 = b + w / 2 * d;
+  return {a2 + w / 2 * n, b2 + w / 2 * n, b2 - w / 2 * n, a2 - w / 2 * n};
+}
+
+struct PaintedView {
+  CameraMatrix cm;
+  JointArray joints = StandController::standPosture();
+  // A goal box side seen from the side, `depth` deep, robot frame: the short line across the
+  // view 1 m ahead, the long lines running away from it (one of them also towards the robot).
+  std::vector<std::array<Eigen::Vector2d, 4>> box(double depth = 0.6, double skewDeg = 0, double x0 = 1.0) const {
+    const double w = 0.05, y1 = depth / 2, y2 = -depth / 2;
+    const Eigen::Vector2d away(std::cos(skewDeg * kDeg), std::sin(skewDeg * kDeg));
+    return {stripe({x0, y1}, {x0, y2}, w), stripe(Eigen::Vector2d(x0, y1) - 0.8 * away, Eigen::Vector2d(x0, y1) + 1.5 * away, w),
+            stripe({x0, y2}, Eigen::Vector2d(x0, y2) + 1.5 * away, w)};
+  }
+};
+
+PaintedView view() {
+  PaintedView v;
+  v.joints[HeadPitch] = 20 * kDeg;
+  v.cm = computeCameraMatrix(v.joints, Eigen::Vector2d::Zero(), CameraId::Top, CameraCalibration{},
+                             CameraIntrinsics::nominal(CameraId::Top));
+  return v;
+}
+
+TEST(CalibrationImages, GoalBoxIsFoundAndRefinedToSubPixel) {
+  const PaintedView v = view();
+  const CameraImage img = paint(v.cm, v.box());
+  ASSERT_TRUE(img.valid());
+  const ExtractionResult r = extractSample(img, v.joints, Eigen::Vector2d::Zero(), v.cm.intrinsics);
+  ASSERT_TRUE(r.sample.has_value()) << r.reason;
+  // Each refined edge lies on the true projected paint edge within a tenth of a pixel.
+  const double hw = 0.025;
+  const std::array<std::pair<Eigen::Vector2d, Eigen::Vector2d>, 3> centres = {
+      std::pair{Eigen::Vector2d(1.0, 0.3), Eigen::Vector2d(1.0, -0.3)},
+      std::pair{Eigen::Vector2d(1.0, 0.3), Eigen::Vector2d(2.5, 0.3)},
+      std::pair{Eigen::Vector2d(1.0, -0.3), Eigen::Vector2d(2.5, -0.3)}};
+  const CalibrationSample& s = *r.sample;
+  for (int l = 0; l < 3; ++l) {
+    // Which true line is it? The one whose centre the measured midline is closest to.
+    const ImageLine mid = s.lines[l].centre();
+    double best = 1e9;
+    int which = -1;
+    for (int c = 0; c < 3; ++c) {
+      const auto a = v.cm.projectGround(centres[c].first), b = v.cm.projectGround(centres[c].second);
+      const Eigen::Vector2d d = (*b - *a).normalized(), n(-d.y(), d.x());
+      const double dist = std::abs((mid.from - *a).dot(n)) + std::abs((mid.to - *a).dot(n));
+      if (dist < best) {
+        best = dist;
+        which = c;
+      }
+    }
+    ASSERT_GE(which, 0);
+    const Eigen::Vector2d d = (centres[which].second - centres[which].first).normalized(), n(-d.y(), d.x());
+    for (const ImageLine* e : {&s.lines[l].edgeA, &s.lines[l].edgeB}) {
+      double bestEdge = 1e9;
+      for (double side : {-1.0, 1.0}) {
+        const auto a = v.cm.projectGround(centres[which].first + side * hw * n);
+        const auto b = v.cm.projectGround(centres[which].second + side * hw * n);
+        const Eigen::Vector2d ed = (*b - *a).normalized(), en(-ed.y(), ed.x());
+        bestEdge = std::min(bestEdge, std::max(std::abs((e->from - *a).dot(en)), std::abs((e->to - *a).dot(en))));
+      }
+      EXPECT_LT(bestEdge, 0.1) << kLineRoleNames[l];
+    }
+  }
+  // And the sample is consistent with the goal box on the ground.
+  const CalibrationCost cost({s}, CostOptions{});
+  const SampleResiduals res = cost.sampleResiduals({}, 0);
+  EXPECT_LT(std::abs(res.angle1Deg), 0.1);
+  EXPECT_LT(std::abs(res.angle2Deg), 0.1);
+  EXPECT_LT(std::abs(res.depthErrorM), 0.003);
+}
+
+TEST(CalibrationImages, RejectsWithAReason) {
+  const PaintedView v = view();
+  // Nothing painted: not found.
+  const ExtractionResult none = extractSample(paint(v.cm, {}), v.joints, Eigen::Vector2d::Zero(), v.cm.intrinsics);
+  EXPECT_FALSE(none.sample);
+  EXPECT_NE(none.reason.find("not found"), std::string::npos) << none.reason;
+
+  // A box 1.65 m deep (the penalty area's side): the same topology, implausible on the ground.
+  const ExtractionResult deep = extractSample(paint(v.cm, v.box(1.65, 0, 2.0)), v.joints, Eigen::Vector2d::Zero(), v.cm.intrinsics);
+  EXPECT_FALSE(deep.sample);
+  EXPECT_NE(deep.reason.find("implausible"), std::string::npos) << deep.reason;
+
+  // Long lines 35 deg off a right angle: implausible.
+  const ExtractionResult skewed = extractSample(paint(v.cm, v.box(0.6, -35)), v.joints, Eigen::Vector2d::Zero(), v.cm.intrinsics);
+  EXPECT_FALSE(skewed.sample);
+  EXPECT_NE(skewed.reason.find("implausible"), std::string::npos) << skewed.reason;
+
+  // Something standing on the middle of the short line: occluded.
+  const auto mid = v.cm.projectGround(Eigen::Vector2d(1.0, 0.0));
+  ASSERT_TRUE(mid);
+  const cv::Rect block(static_cast<int>(mid->x()) - 80, static_cast<int>(mid->y()) - 80, 160, 100);
+  const ExtractionResult occluded =
+      extractSample(paint(v.cm, v.box(), {block}), v.joints, Eigen::Vector2d::Zero(), v.cm.intrinsics);
+  EXPECT_FALSE(occluded.sample);
+  EXPECT_NE(occluded.reason.find("occluded"), std::string::npos) << occluded.reason;
+  for (const auto* r : {&none, &deep, &skewed, &occluded}) std::printf("rejected: %s\n", r->reason.c_str());
+}
+
+// ---- The store ----
+
+TEST(CalibrationStore, SavesLoadsAndValidates) {
+  const auto dir = std::filesystem::temp_directory_path() / "nao_calibration_store_test";
+  std::filesystem::remove_all(dir);
+  CalibrationStore store(dir.string());
+  EXPECT_FALSE(store.load("head-1").has_value());
+  EXPECT_EQ(store.offsetsFor("head-1").toArray(), CameraCalibration{}.toArray());
+  CalibrationRecord rec;
+  rec.offsets = offsetsDeg(0.5, -1, 1.5, -2, 2.5, -3);
+  rec.rmsAngleDeg = 0.02;
+  rec.rmsDepthM = 0.0005;
+  rec.samples = 10;
+  rec.solver = "gauss-newton";
+  const SaveOutcome out = store.save("head-1", rec);
+  ASSERT_TRUE(out.saved) << out.reason;
+  const auto back = store.load("head-1");
+  ASSERT_TRUE(back);
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(back->offsets.toArray()[k], rec.offsets.toArray()[k], 1e-12);
+  EXPECT_EQ(back->samples, 10);
+
+  EXPECT_THROW(store.pathFor("../evil"), Error);
+  EXPECT_THROW(store.pathFor(""), Error);
+  // A broken file names the file and the key.
+  std::ofstream(store.pathFor("head-2")) << R"({"offsets_deg": {"body_roll": 1, "body_pitch": "x"}})";
+  try {
+    store.load("head-2");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("offsets_deg.body_pitch"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("head-2.json"), std::string::npos) << e.what();
+  }
+  std::ofstream(store.pathFor("head-3")) << R"({"offsets_deg": {"body_roll": 1, "body_pitch": 0, "top_roll": 0,
+      "top_pitch": 0, "bottom_roll": 0, "bottom_pitch": 45}})";
+  EXPECT_THROW(store.load("head-3"), Error);
+  // A record that did not converge is refused.
+  rec.converged = false;
+  EXPECT_FALSE(store.save("head-4", rec).saved);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace nao::calibration

@@ -1,0 +1,47 @@
+# The real NAO backend (robot/nao/): LoLA packets and safety, the LoLA peer end to end,
+# the GameController protocol and buttons, V4L2 against a test double of the ioctl layer.
+
+# A stand-in for the NAO's LoLA daemon: its own msgpack encoder/decoder, a real Unix socket,
+# the real nao-soccer as its client (run by lola_test).
+add_executable(lola_peer lola_peer.cpp)
+target_link_libraries(lola_peer PRIVATE ${NAO_MSGPACK_TARGET})
+target_compile_definitions(lola_peer PRIVATE MSGPACK_NO_BOOST)
+nao_warnings(lola_peer)
+
+# The peer runs the real nao-soccer for 1000+ cycles and judges every answer's timing, so it
+# runs alone (RUN_SERIAL): "no late answer" is a claim about normal load, not about a machine
+# busy with other tests.
+add_test(NAME lola_peer_test COMMAND lola_peer --nao-soccer $<TARGET_FILE:nao-soccer> --cycles 1000)
+set_tests_properties(lola_peer_test PROPERTIES RUN_SERIAL TRUE TIMEOUT 300 LABELS "nao;wip")
+
+nao_add_test(lola_test SOURCES lola_test.cpp LIBS nao_robot ${NAO_MSGPACK_TARGET})
+target_compile_definitions(lola_test PRIVATE MSGPACK_NO_BOOST)
+
+nao_add_test(gamecontroller_test SOURCES gamecontroller_test.cpp LIBS nao_robot)
+nao_add_test(v4l2_test SOURCES v4l2_test.cpp LIBS nao_robot)
+
+# libFuzzer targets for the two parsers that read bytes from the network (.ci/fuzz.sh builds
+# and runs them in build-fuzz with clang). The parsers are compiled into each target with
+# coverage instrumentation.
+option(NAO_FUZZ "Build the libFuzzer targets (needs clang)" OFF)
+if(NAO_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "NAO_FUZZ needs clang (libFuzzer): -DCMAKE_CXX_COMPILER=clang++ (.ci/fuzz.sh)")
+  endif()
+  set(_fuzz_flags -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+  function(nao_fuzz_target name)
+    add_executable(${name} ${ARGN})
+    target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR})
+    target_compile_options(${name} PRIVATE ${_fuzz_flags} -g -Wall -Wextra)
+    target_link_options(${name} PRIVATE ${_fuzz_flags})
+    target_compile_definitions(${name} PRIVATE MSGPACK_NO_BOOST)
+    target_link_libraries(${name} PRIVATE Eigen3::Eigen ${NAO_MSGPACK_TARGET})
+  endfunction()
+  nao_fuzz_target(lola_fuzz fuzz/lola_fuzz.cpp ${CMAKE_SOURCE_DIR}/robot/nao/LolaPacket.cpp)
+  nao_fuzz_target(gamecontroller_fuzz fuzz/gamecontroller_fuzz.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp)
+  # Seed inputs (a valid packet of each kind and a few damaged ones), written at run time.
+  add_executable(fuzz_seeds fuzz/fuzz_seeds.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp)
+  target_include_directories(fuzz_seeds PRIVATE ${CMAKE_SOURCE_DIR})
+  target_compile_definitions(fuzz_seeds PRIVATE MSGPACK_NO_BOOST)
+  target_link_libraries(fuzz_seeds PRIVATE Eigen3::Eigen ${NAO_MSGPACK_TARGET})
+endif()

@@ -1,0 +1,3 @@
+# Scene assembly and camera rendering (sim/SceneBuilder, CameraRenderer, Lighting, ImageIO, FieldView).
+nao_add_test(scene_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/scene_test.cpp LIBS nao_sim)
+nao_add_test(render_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/render_test.cpp LIBS nao_sim)

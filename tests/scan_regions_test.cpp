@@ -1,0 +1,532 @@
+// The first half of the vision (scan grid, YHS2, colour-segmented scan lines, field boundary,
+// obstacles) on synthetic images drawn pixel by pixel through a camera matrix (so the truth
+// of every pixel is known), under different brightness, colour casts, shadows and noise,
+// and on the real NAO images with their segmentation masks. No simulator: nao_perception only.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "perception/CameraModel.h"
+#include "perception/vision/FieldBoundaryDetector.h"
+#include "perception/vision/ObstacleDetector.h"
+#include "perception/vision/ScanGrid.h"
+#include "perception/vision/ScanLineRegionizer.h"
+#include "perception/vision/VisionDebug.h"
+#include "perception/vision/Yhs.h"
+
+namespace nao {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+// RGB (CV_8UC3, RGB order) -> the NAO's YUYV (BT.601 full range, U/V averaged per pixel pair).
+CameraImage toCameraImage(const cv::Mat& rgb, CameraId camera = CameraId::Top) {
+  CameraImage img;
+  img.camera = camera;
+  img.width = rgb.cols & ~1;
+  img.height = rgb.rows;
+  img.yuyv.resize(static_cast<std::size_t>(img.width) * img.height * 2);
+  auto clampByte = [](double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
+  for (int y = 0; y < img.height; ++y) {
+    const std::uint8_t* in = rgb.ptr<std::uint8_t>(y);
+    std::uint8_t* o = img.yuyv.data() + static_cast<std::size_t>(y) * img.width * 2;
+    for (int x = 0; x < img.width; x += 2, in += 6, o += 4) {
+      const double r0 = in[0], g0 = in[1], b0 = in[2], r1 = in[3], g1 = in[4], b1 = in[5];
+      const double ra = (r0 + r1) / 2, ga = (g0 + g1) / 2, ba = (b0 + b1) / 2;
+      o[0] = clampByte(0.299 * r0 + 0.587 * g0 + 0.114 * b0);
+      o[1] = clampByte(128 - 0.168736 * ra - 0.331264 * ga + 0.5 * ba);
+      o[2] = clampByte(0.299 * r1 + 0.587 * g1 + 0.114 * b1);
+      o[3] = clampByte(128 + 0.5 * ra - 0.418688 * ga - 0.081312 * ba);
+    }
+  }
+  return img;
+}
+
+// A camera `height` m above the robot origin, pitched down by `pitch`, yawed by `yaw`.
+CameraMatrix cameraAt(double height, double pitch, double yaw = 0, int w = 640, int h = 480) {
+  CameraMatrix cm;
+  cm.intrinsics = CameraIntrinsics::fromFovY(w, h);
+  cm.pose = Eigen::Isometry3d::Identity();
+  cm.pose.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+                         .toRotationMatrix();
+  cm.pose.translation() = Eigen::Vector3d(0, 0, height);
+  return cm;
+}
+
+// --- Synthetic scenes -----------------------------------------------------------------------
+
+enum Truth : std::uint8_t { kBackground = 0, kField = 1, kLine = 2, kRobot = 3 };
+
+struct Light {
+  std::string name;
+  double gain = 1;                      // overall brightness
+  Eigen::Vector3d cast{1, 1, 1};        // per RGB channel (no white balance)
+  double noise = 2;                     // std. dev. per channel
+  bool shadow = false;                  // a hard shadow band across the field
+};
+
+std::vector<Light> lights() {
+  return {{"normal", 1.0, {1, 1, 1}, 2, false},      {"dark", 0.3, {1, 1, 1}, 3, false},
+          {"bright", 1.8, {1, 1, 1}, 2, false},      {"warm", 1.0, {1.0, 0.72, 0.42}, 2, false},
+          {"cold", 1.0, {0.72, 0.88, 1.0}, 2, false}, {"shadow", 1.2, {1, 1, 1}, 2, true},
+          {"noisy", 0.8, {1, 1, 1}, 7, false}};
+}
+
+// Ground lines (robot frame, m): across the view, running away, a far one.
+struct GroundLine {
+  Eigen::Vector2d from, to;
+};
+const std::vector<GroundLine> kLines = {
+    {{1.2, -3.0}, {1.2, 3.0}}, {{3.0, -3.0}, {3.0, 3.0}}, {{0.2, 0.6}, {4.5, 0.6}}, {{0.2, -1.4}, {4.5, -0.9}}};
+constexpr double kLineWidth = 0.05;
+constexpr double kCarpetEnd = 4.5, kCarpetHalfWidth = 3.5;  // the carpet ends here; a grey hall beyond
+
+bool onLine(const Eigen::Vector2d& p, double margin = 0) {
+  for (const auto& l : kLines) {
+    const Eigen::Vector2d d = (l.to - l.from).normalized();
+    const Eigen::Vector2d q = p - l.from;
+    const double t = q.dot(d), n = std::abs(q.x() * d.y() - q.y() * d.x());
+    if (t >= -kLineWidth / 2 && t <= (l.to - l.from).norm() + kLineWidth / 2 && n <= kLineWidth / 2 + margin) return true;
+  }
+  return false;
+}
+
+struct Scene {
+  cv::Mat rgb;    // CV_8UC3, RGB
+  cv::Mat truth;  // CV_8UC1, Truth per pixel (at the pixel centre)
+  CameraMatrix cm;
+};
+
+// Renders the scene through cm, pixel by pixel. robot: a grey box 0.15 m wide and 0.5 m tall
+// standing at robotAt (robot frame), facing the camera.
+Scene render(const CameraMatrix& cm, const Light& light, std::uint64_t seed, bool robot = false,
+             const Eigen::Vector2d& robotAt = {1.8, 0.3}) {
+  const int W = cm.intrinsics.width, H = cm.intrinsics.height;
+  Scene s{cv::Mat(H, W, CV_8UC3), cv::Mat(H, W, CV_8UC1), cm};
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, light.noise);
+  const Eigen::Vector3d field(0.22, 0.55, 0.20), paint(0.93, 0.93, 0.93), hall(0.42, 0.42, 0.45), grey(0.8, 0.8, 0.82);
+  const Eigen::Vector3d eye = cm.pose.translation();
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const Eigen::Vector2d px(x + 0.5, y + 0.5);
+      Eigen::Vector3d colour = hall * 0.8;  // walls
+      Truth t = kBackground;
+      double shade = 1;
+      if (const auto g = cm.pixelToGround(px)) {
+        if (g->x() < kCarpetEnd && std::abs(g->y()) < kCarpetHalfWidth) {
+          t = onLine(*g) ? kLine : kField;
+          colour = t == kLine ? paint : field;
+          // Grass texture: a little luminance variation.
+          colour *= 1 + 0.06 * std::sin(37 * g->x()) * std::cos(23 * g->y());
+          if (light.shadow && g->x() > 1.6 && g->x() < 2.4) shade = 0.4;
+        } else {
+          colour = hall;
+        }
+      }
+      if (robot) {
+        const Eigen::Vector3d ray = cm.pixelRay(px);
+        const double tHit = (robotAt.x() - eye.x()) / ray.x();
+        if (ray.x() > 0 && tHit > 0) {
+          const Eigen::Vector3d p = eye + tHit * ray;
+          const auto g = cm.pixelToGround(px);
+          const bool nearer = !g || (*g - eye.head<2>()).norm() > (p.head<2>() - eye.head<2>()).norm();
+          if (nearer && p.z() >= 0 && p.z() <= 0.5 && std::abs(p.y() - robotAt.y()) <= 0.075) {
+            t = kRobot;
+            colour = p.z() > 0.2 && p.z() < 0.26 ? Eigen::Vector3d(0.15, 0.15, 0.17) : grey;
+            shade = 1;
+          }
+        }
+      }
+      s.truth.at<std::uint8_t>(y, x) = t;
+      cv::Vec3b& out = s.rgb.at<cv::Vec3b>(y, x);
+      for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<std::uint8_t>(
+            std::clamp(colour[c] * light.cast[c] * light.gain * shade * 255 + noise(rng), 0.0, 255.0));
+    }
+  return s;
+}
+
+struct RegionScore {
+  long fieldTruth = 0, fieldOk = 0;  // truth field pixels on regions, of them classified field
+  long white = 0, whiteOnLine = 0;   // white pixels (on the carpet), of them on a line (+-1 px)
+  long lineTruth = 0, lineWhite = 0;  // truth line pixels on regions, of them white
+  double fieldCoverage() const { return fieldTruth ? static_cast<double>(fieldOk) / fieldTruth : 1; }
+  double whitePrecision() const { return white ? static_cast<double>(whiteOnLine) / white : 1; }
+  double lineRecall() const { return lineTruth ? static_cast<double>(lineWhite) / lineTruth : 1; }
+};
+
+RegionScore score(const ScanLineRegions& regions, const cv::Mat& truth) {
+  RegionScore s;
+  cv::Mat lineNear;  // line pixels dilated by one pixel
+  cv::dilate(truth == kLine, lineNear, cv::Mat::ones(3, 3, CV_8U));
+  auto visit = [&](int x, int y, RegionClass c) {
+    const std::uint8_t t = truth.at<std::uint8_t>(y, x);
+    if (t == kField) s.fieldTruth++, s.fieldOk += c == RegionClass::Field;
+    if (t == kLine) s.lineTruth++, s.lineWhite += c == RegionClass::White;
+    if (c == RegionClass::White && (t == kField || t == kLine)) s.white++, s.whiteOnLine += lineNear.at<std::uint8_t>(y, x) != 0;
+  };
+  for (const ScanLine& l : regions.vertical)
+    for (const ScanRegion& r : l.regions)
+      for (int y = r.from; y < r.to; ++y) visit(l.coord, y, r.cls);
+  for (const ScanLine& l : regions.horizontal)
+    for (const ScanRegion& r : l.regions)
+      for (int x = r.from; x < r.to; ++x) visit(x, l.coord, r.cls);
+  return s;
+}
+
+// --- YHS2 -----------------------------------------------------------------------------------
+
+TEST(Yhs, TableMatchesTheDefinition) {
+  for (int u = 0; u < 256; u += 5)
+    for (int v = 0; v < 256; v += 7) {
+      const Yhs c = toYhs(100, static_cast<std::uint8_t>(u), static_cast<std::uint8_t>(v));
+      const double hue = std::atan2(v - 128.0, u - 128.0) / (2 * M_PI) * 256;
+      const double sat = std::min(255.0, 2 * std::hypot(u - 128.0, v - 128.0));
+      EXPECT_LE(hueDistance(c.h, static_cast<int>(std::lround(hue)) & 255), 1) << u << " " << v;
+      EXPECT_NEAR(c.s, sat, 1.0) << u << " " << v;
+      EXPECT_EQ(c.y, 100);
+    }
+  // Green, yellow, cyan where the header says.
+  EXPECT_LE(hueDistance(toYhs(std::uint8_t{150}, std::uint8_t{85}, std::uint8_t{77}).h, 160), 4);
+  EXPECT_EQ(hueDistance(10, 250), 16);
+  EXPECT_EQ(hueOffset(250, 10), 16);
+  EXPECT_EQ(hueOffset(10, 250), -16);
+}
+
+// --- Scan grid ------------------------------------------------------------------------------
+
+TEST(ScanGrid, AdaptsToTheCameraAndStaysBelowTheHorizon) {
+  for (double pitch : {5 * kDeg, 15 * kDeg, 30 * kDeg})
+    for (double roll : {0.0, 6 * kDeg}) {
+      CameraMatrix cm = cameraAt(0.5, pitch);
+      cm.pose.linear() = cm.pose.linear() * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()).toRotationMatrix();
+      const ScanGrid g = makeScanGrid(cm, 640, 480);
+      ASSERT_FALSE(g.empty());
+      ASSERT_EQ(g.xs.size(), g.topY.size());
+      ASSERT_EQ(g.ys.size(), g.leftX.size());
+      // Nothing above the horizon: every scanned pixel looks at the ground.
+      for (std::size_t i = 0; i < g.xs.size(); ++i) {
+        EXPECT_FALSE(cm.isAboveHorizon({g.xs[i] + 0.5, g.topY[i] + 0.5})) << g.xs[i];
+        EXPECT_LE(g.bottomY[i], 480);
+      }
+      for (std::size_t i = 0; i < g.ys.size(); ++i) {
+        EXPECT_FALSE(cm.isAboveHorizon({g.leftX[i] + 0.5, g.ys[i] + 0.5}));
+        EXPECT_FALSE(cm.isAboveHorizon({g.rightX[i] - 0.5, g.ys[i] + 0.5}));
+      }
+      // At every row, neighbouring vertical lines are no farther apart than the expected
+      // width of a field line there (or the finest spacing).
+      for (int y = g.horizonY + 2; y < 480; y += 7) {
+        if (g.lineWidthPx[y] <= 0) continue;
+        std::vector<int> xs;
+        for (std::size_t i = 0; i < g.xs.size(); ++i)
+          if (g.topY[i] <= y && y < g.bottomY[i]) xs.push_back(g.xs[i]);
+        ASSERT_GE(xs.size(), 2u) << "row " << y;
+        int widest = 0;
+        for (std::size_t i = 1; i < xs.size(); ++i) widest = std::max(widest, xs[i] - xs[i - 1]);
+        EXPECT_LE(widest, std::max<double>(g.minSpacing, std::min<double>(32.0, g.lineWidthPx[y])) + 1e-9)
+            << "row " << y << " line width " << g.lineWidthPx[y];
+      }
+      // The expected width agrees with the projection of a 5 cm line.
+      const int row = (g.horizonY + 480) / 2;
+      const auto ground = cm.pixelToGround({320, row + 0.5});
+      ASSERT_TRUE(ground);
+      const double dist = (*ground - cm.pose.translation().head<2>()).norm();
+      EXPECT_NEAR(g.lineWidthPx[row], cm.intrinsics.fx * 0.05 / std::hypot(dist, 0.5), 0.25 * g.lineWidthPx[row] + 0.5);
+    }
+}
+
+TEST(ScanGrid, LooksAboveTheImageAndAtTheOwnFeet) {
+  // Looking up: no ground, no lines.
+  EXPECT_TRUE(makeScanGrid(cameraAt(0.5, -40 * kDeg), 640, 480).empty());
+  // Looking steeply down (a bottom camera at the feet): no sample on the own feet.
+  const CameraMatrix down = cameraAt(0.45, 75 * kDeg, 0, 320, 240);
+  const ScanGrid g = makeScanGrid(down, 320, 240);
+  ASSERT_FALSE(g.empty());
+  for (std::size_t i = 0; i < g.xs.size(); ++i)
+    for (int y : g.sampleRows) {
+      if (y < g.topY[i] || y >= g.bottomY[i]) continue;
+      const auto p = down.pixelToGround({g.xs[i] + 0.5, y + 0.5});
+      ASSERT_TRUE(p);
+      EXPECT_FALSE(p->x() > -0.08 && p->x() < 0.12 && std::abs(p->y()) < 0.11) << g.xs[i] << "," << y;
+    }
+  // The unknown-pose camera scans the whole image.
+  const CameraMatrix unknown = cameraMatrixForUnknownPose(640, 480);
+  const ScanGrid u = makeScanGrid(unknown, 640, 480);
+  EXPECT_EQ(u.horizonY, 0);
+  EXPECT_FALSE(unknown.isAboveHorizon({0.5, 0.5}));
+}
+
+// --- Regions on synthetic images ----------------------------------------------------------
+
+TEST(ScanLineRegions, FieldAndLinesUnderEveryLight) {
+  const CameraMatrix cm = cameraAt(0.5, 16 * kDeg);
+  std::printf("%-7s %8s %8s %8s | %6s %6s %6s %8s\n", "light", "field", "white", "lines", "edgeT", "fieldY", "whiteY",
+              "whitePt");
+  std::uint64_t seed = 1;
+  for (const Light& light : lights()) {
+    const Scene s = render(cm, light, seed++);
+    const CameraImage img = toCameraImage(s.rgb);
+    const FieldSegmentation seg = segmentField(img, cm);
+    const RegionScore sc = score(seg.regions, s.truth);
+    const FieldColour& fc = seg.regions.fieldColour;
+    std::printf("%-7s %8.3f %8.3f %8.3f | %6.1f %6d %6d (%.2f,%.2f)\n", light.name.c_str(), sc.fieldCoverage(),
+                sc.whitePrecision(), sc.lineRecall(), fc.edgeThreshold, fc.fieldY, fc.whiteYMin, fc.whiteU, fc.whiteV);
+    EXPECT_TRUE(fc.valid) << light.name;
+    EXPECT_GE(sc.fieldCoverage(), 0.97) << light.name;
+    EXPECT_GE(sc.whitePrecision(), 0.9) << light.name;
+    EXPECT_GE(sc.lineRecall(), 0.6) << light.name;
+  }
+}
+
+TEST(ScanLineRegions, RegionsTileTheScannedLines) {
+  const CameraMatrix cm = cameraAt(0.5, 20 * kDeg);
+  const Scene s = render(cm, lights()[0], 7);
+  const CameraImage img = toCameraImage(s.rgb);
+  const ScanGrid grid = makeScanGrid(cm, img.width, img.height);
+  const ScanLineRegions r = computeScanLineRegions(img, grid, nullptr);
+  ASSERT_FALSE(r.vertical.empty());
+  ASSERT_FALSE(r.horizontal.empty());
+  for (const auto* lines : {&r.vertical, &r.horizontal})
+    for (const ScanLine& line : *lines) {
+      if (line.regions.empty()) continue;
+      EXPECT_EQ(line.regions.front().from, line.start);
+      EXPECT_EQ(line.regions.back().to, line.end);
+      for (std::size_t k = 0; k < line.regions.size(); ++k) {
+        EXPECT_LT(line.regions[k].from, line.regions[k].to);
+        EXPECT_NE(line.regions[k].cls, RegionClass::Unknown);
+        if (k) {
+          EXPECT_EQ(line.regions[k].from, line.regions[k - 1].to);
+          EXPECT_NE(line.regions[k].cls, line.regions[k - 1].cls);  // same-class neighbours merged
+        }
+      }
+    }
+  // The boundary cut: vertical lines start at the boundary, the cut regions are a subset.
+  const FieldBoundary b = detectFieldBoundary(img, r, cm);
+  ASSERT_TRUE(b.valid);
+  const ScanLineRegions cut = cutAtBoundary(r, b);
+  for (const ScanLine& line : cut.vertical) {
+    if (line.start < line.end) {
+      EXPECT_GE(line.start + 0.5, b.yAt(line.coord + 0.5) - 1e-9);
+    }
+    if (!line.regions.empty()) {
+      EXPECT_EQ(line.regions.front().from, line.start);
+    }
+  }
+  // Scanning with the boundary gives the same picture below it.
+  const ScanLineRegions again = computeScanLineRegions(img, grid, &b);
+  const RegionScore againScore = score(again, s.truth);
+  EXPECT_GE(againScore.fieldCoverage(), 0.97);
+  EXPECT_GE(againScore.whitePrecision(), 0.9);
+}
+
+TEST(ScanLineRegions, NoFieldNoImage) {
+  const CameraMatrix cm = cameraAt(0.5, 20 * kDeg);
+  // A grey image: no field colour, nothing white, no boundary, no obstacles.
+  cv::Mat grey(480, 640, CV_8UC3, cv::Scalar(120, 120, 124));
+  const CameraImage img = toCameraImage(grey);
+  const FieldSegmentation s = segmentField(img, cm);
+  EXPECT_FALSE(s.regions.fieldColour.valid);
+  EXPECT_FALSE(s.boundary.valid);
+  EXPECT_TRUE(s.obstacles.obstacles.empty());
+  for (const ScanLine& l : s.regions.vertical)
+    for (const ScanRegion& r : l.regions) EXPECT_EQ(r.cls, RegionClass::Other);
+  // An invalid image or one of another size than the grid: nothing, no crash.
+  CameraImage broken = img;
+  broken.yuyv.resize(100);
+  EXPECT_TRUE(computeScanLineRegions(broken, s.grid, nullptr).vertical.empty());
+  EXPECT_FALSE(detectFieldBoundary(broken, ScanLineRegions{}, cm).valid);
+  EXPECT_TRUE(segmentField(CameraImage{}, cm).regions.vertical.empty());
+  const CameraImage small = toCameraImage(cv::Mat(240, 320, CV_8UC3, cv::Scalar(60, 140, 50)));
+  EXPECT_TRUE(computeScanLineRegions(small, s.grid, nullptr).vertical.empty());
+}
+
+TEST(ScanLineRegions, AnyCameraAnyImage) {
+  // Random camera orientations (rolled, upside down, straight down) and random images, both
+  // resolutions: results stay inside the image, nothing crashes.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-M_PI, M_PI);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int w = trial % 2 ? 320 : 640, h = w * 3 / 4;
+    CameraMatrix cm = cameraAt(0.3 + 0.1 * (trial % 5), u(rng) / 2, u(rng), w, h);
+    cm.pose.linear() = cm.pose.linear() * Eigen::AngleAxisd(trial % 3 ? u(rng) / 8 : u(rng), Eigen::Vector3d::UnitX())
+                                              .toRotationMatrix();
+    cv::Mat rgb(h, w, CV_8UC3);
+    if (trial % 4 == 0) {
+      cv::randu(rgb, cv::Scalar::all(0), cv::Scalar::all(256));
+    } else {
+      rgb.setTo(cv::Scalar(50 + trial, 140, 60));
+      for (int k = 0; k < 12; ++k)
+        cv::rectangle(rgb, cv::Rect(static_cast<int>(rng() % w), static_cast<int>(rng() % h), 40, 25),
+                      cv::Scalar(static_cast<int>(rng() % 256), static_cast<int>(rng() % 256), static_cast<int>(rng() % 256)),
+                      -1);
+    }
+    const FieldSegmentation s = segmentField(toCameraImage(rgb), cm);
+    for (const auto* lines : {&s.regions.vertical, &s.regions.horizontal})
+      for (const ScanLine& line : *lines)
+        for (const ScanRegion& r : line.regions) {
+          ASSERT_GE(r.from, 0);
+          ASSERT_LE(r.to, lines == &s.regions.vertical ? h : w);
+        }
+    for (const auto& o : s.obstacles.obstacles) {
+      EXPECT_GE(o.left, 0);
+      EXPECT_LE(o.right, w);
+      EXPECT_GE(o.top, 0);
+      EXPECT_LE(o.bottom, h);
+    }
+  }
+}
+
+// --- Boundary and obstacles on synthetic images ---------------------------------------------
+
+// The true boundary at column x: the first row whose truth is carpet (field, line or robot feet).
+double trueBoundary(const cv::Mat& truth, const CameraMatrix& cm, int x) {
+  for (int y = 0; y < truth.rows; ++y) {
+    const auto g = cm.pixelToGround({x + 0.5, y + 0.5});
+    if (g && g->x() < kCarpetEnd && std::abs(g->y()) < kCarpetHalfWidth) return y;
+  }
+  return truth.rows;
+}
+
+TEST(FieldBoundary, SyntheticCarpetEdgeUnderEveryLight) {
+  for (double yaw : {0.0, 35 * kDeg}) {
+    // Yawed: the carpet's corner is in view (two segments).
+    const CameraMatrix cm = cameraAt(0.5, 10 * kDeg, yaw);
+    std::uint64_t seed = 100;
+    for (const Light& light : lights()) {
+      const Scene s = render(cm, light, seed++, true);
+      const CameraImage img = toCameraImage(s.rgb);
+      const FieldSegmentation seg = segmentField(img, cm);
+      ASSERT_TRUE(seg.boundary.valid) << light.name;
+      std::vector<double> err;
+      for (int x = 2; x < 640; x += 8) {
+        const double t = trueBoundary(s.truth, cm, x);
+        if (t >= 480) continue;
+        // The robot hides the edge behind it: skip those columns.
+        bool hidden = false;
+        for (int y = 0; y < 480 && !hidden; ++y) hidden = s.truth.at<std::uint8_t>(y, x) == kRobot && y <= t + 3;
+        if (!hidden) err.push_back(std::abs(seg.boundary.yAt(x + 0.5) - t));
+      }
+      ASSERT_GT(err.size(), 20u);
+      std::sort(err.begin(), err.end());
+      const double median = err[err.size() / 2], p90 = err[err.size() * 9 / 10];
+      std::printf("yaw %2.0f %-7s boundary error median %.1f px, 90%% %.1f px, %zu points\n", yaw / kDeg,
+                  light.name.c_str(), median, p90, seg.boundary.points.size());
+      EXPECT_LE(median, 2.0) << light.name;
+      EXPECT_LE(p90, 5.0) << light.name;
+    }
+  }
+}
+
+TEST(Obstacles, ARobotOnTheFieldAndNoneWithoutIt) {
+  const CameraMatrix cm = cameraAt(0.5, 16 * kDeg);
+  std::uint64_t seed = 200;
+  for (const Light& light : lights()) {
+    for (const Eigen::Vector2d& at : {Eigen::Vector2d(1.5, 0.3), Eigen::Vector2d(2.6, -0.8)}) {
+      const Scene s = render(cm, light, seed++, true, at);
+      const FieldSegmentation seg = segmentField(toCameraImage(s.rgb), cm);
+      const auto foot = cm.projectGround(at);
+      ASSERT_TRUE(foot);
+      const bool found = std::any_of(seg.obstacles.obstacles.begin(), seg.obstacles.obstacles.end(), [&](const auto& o) {
+        return foot->x() >= o.left - 4 && foot->x() <= o.right + 4 && foot->y() >= o.top && foot->y() <= o.bottom + 6;
+      });
+      EXPECT_TRUE(found) << light.name << " robot at " << at.transpose();
+      EXPECT_EQ(seg.obstacles.obstacles.size(), 1u) << light.name;
+      for (const auto& o : seg.obstacles.obstacles) {
+        EXPECT_NEAR(o.footRobot.x(), at.x(), 0.25 * at.x()) << light.name;
+        EXPECT_TRUE(seg.obstacles.contains(0.5 * (o.left + o.right), o.bottom - 1));
+      }
+    }
+    // Lines alone are no obstacle.
+    const Scene empty = render(cm, light, seed++, false);
+    EXPECT_TRUE(segmentField(toCameraImage(empty.rgb), cm).obstacles.obstacles.empty()) << light.name;
+  }
+}
+
+// --- Real images ----------------------------------------------------------------------------
+
+// The masks (../shared/data/real-nao-images/NNNNN.png) are RGB PNGs, one colour per class:
+// field (245, 41, 5), line (70, 199, 10), ball (199, 92, 10), robot (10, 193, 199),
+// goal (199, 10, 193), others (45, 10, 199), uncertain (0, 0, 0) (also drawn along every
+// border between classes).
+const cv::Vec3b kMaskField(245, 41, 5), kMaskLine(70, 199, 10);
+
+TEST(RealImages, FieldColourCoversTheMaskedField) {
+  const std::filesystem::path dir = std::filesystem::path(NAO_SHARED_DIR) / "data" / "real-nao-images";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << dir << " is missing";
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string f = e.path().filename().string();
+    if (f.size() == 9 && f.substr(5) == ".png") names.push_back(f.substr(0, 5));
+  }
+  std::sort(names.begin(), names.end());
+  ASSERT_GE(names.size(), 13u);
+  // 00159 is backlit: a quarter of its field is clipped to colourless white by the sensor
+  // and another quarter is sunlit to cyan; no colour rule can call that field (see the
+  // closing note). It is measured and must not get worse.
+  const std::vector<std::string> knownHard = {"00159"};
+  std::printf("%-6s %9s %8s %9s %9s %7s\n", "image", "field", "pixels", "white", "on-line", "ms");
+  for (const std::string& n : names) {
+    cv::Mat bgr = cv::imread((dir / (n + "_RGB.png")).string(), cv::IMREAD_COLOR);
+    cv::Mat mask = cv::imread((dir / (n + ".png")).string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(bgr.empty()) << n;
+    ASSERT_FALSE(mask.empty()) << n;
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    cv::cvtColor(mask, mask, cv::COLOR_BGR2RGB);
+    const CameraImage img = toCameraImage(rgb);
+    const CameraMatrix cm = cameraMatrixForUnknownPose(img.width, img.height);
+    const auto t0 = std::chrono::steady_clock::now();
+    const FieldSegmentation seg = segmentField(img, cm);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    long field = 0, fieldOk = 0, white = 0, whiteOnLine = 0;
+    auto visit = [&](int x, int y, RegionClass c) {
+      const cv::Vec3b m = mask.at<cv::Vec3b>(y, x);
+      if (m == kMaskField) ++field, fieldOk += c == RegionClass::Field;
+      if (c == RegionClass::White && (m == kMaskField || m == kMaskLine)) ++white, whiteOnLine += m == kMaskLine;
+    };
+    for (const ScanLine& l : seg.regions.vertical)
+      for (const ScanRegion& r : l.regions)
+        for (int y = r.from; y < r.to; ++y) visit(l.coord, y, r.cls);
+    for (const ScanLine& l : seg.regions.horizontal)
+      for (const ScanRegion& r : l.regions)
+        for (int x = r.from; x < r.to; ++x) visit(x, l.coord, r.cls);
+    const double coverage = field ? static_cast<double>(fieldOk) / field : 0;
+    std::printf("%-6s %9.3f %8ld %9ld %9.3f %7.2f\n", n.c_str(), coverage, field, white,
+                white ? static_cast<double>(whiteOnLine) / white : 0.0, ms);
+    ASSERT_GT(field, 1000) << n;
+    const bool hard = std::find(knownHard.begin(), knownHard.end(), n) != knownHard.end();
+    EXPECT_GE(coverage, hard ? 0.45 : 0.90) << n;
+  }
+}
+
+// --- Timing ---------------------------------------------------------------------------------
+
+TEST(Timing, SegmentationOfATopImage) {
+  const CameraMatrix cm = cameraAt(0.5, 16 * kDeg);
+  const Scene s = render(cm, lights()[0], 5, true);
+  const CameraImage img = toCameraImage(s.rgb);
+  std::vector<double> ms;
+  for (int i = 0; i < 300; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const FieldSegmentation seg = segmentField(img, cm);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    ASSERT_TRUE(seg.boundary.valid);
+  }
+  std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+  std::printf("segmentField (grid, regions, boundary, cut, obstacles), 640x480: median %.3f ms over %zu runs\n",
+              ms[ms.size() / 2], ms.size());
+}
+
+}  // namespace
+}  // namespace nao

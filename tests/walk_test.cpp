@@ -1,0 +1,217 @@
+// The walk, the motion engine and head control, closed-loop in the simulator (ground truth):
+// straight and turning walks, walking to a target on odometry, the robot program's pipeline,
+// the "foreign robot" variations of the World, and head control's geometry and speed limits.
+// NAO_TEST_QUICK (set for the sanitizer run) shortens the simulations.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include "controllers/HeadControl.h"
+#include "controllers/Kinematics.h"
+#include "controllers/RobotProgram.h"
+#include "controllers/Walk.h"
+#include "robot/Error.h"
+#include "robot/ForwardKinematics.h"
+#include "robot/RobotDimensions.h"
+#include "scenarios/WalkEval.h"
+#include "sim/SimBackend.h"
+#include "sim/World.h"
+
+namespace nao {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+bool quick() { return std::getenv("NAO_TEST_QUICK") != nullptr; }
+double seconds(double full) { return quick() ? full / 3 : full; }
+
+TEST(Walk, StandPostureCentresTheComBetweenFlatFeet) {
+  Walk walk;
+  const JointArray j = walk.standPosture();
+  const auto l = torsoToSole(j, BodySide::Left), r = torsoToSole(j, BodySide::Right);
+  EXPECT_NEAR(l.translation().z(), -walk.params().torsoHeight, 1e-6);
+  EXPECT_NEAR(r.translation().z(), -walk.params().torsoHeight, 1e-6);
+  EXPECT_NEAR(l.translation().y() - r.translation().y(), walk.params().footSpacing, 1e-6);
+  EXPECT_TRUE(l.linear().isApprox(Eigen::Matrix3d::Identity(), 1e-6));
+  const Eigen::Vector3d com = centerOfMass(j);
+  const Eigen::Vector3d mid = (l.translation() + r.translation()) / 2;
+  EXPECT_NEAR(com.x(), mid.x(), 1e-4);
+  EXPECT_NEAR(com.y(), mid.y(), 1e-4);
+}
+
+TEST(Walk, SpeedLimits) {
+  Walk walk;
+  const Pose2 s = walk.clipSpeed({10, 0, 0});
+  EXPECT_DOUBLE_EQ(s.x, walk.params().maxForward);
+  const Pose2 b = walk.clipSpeed({-10, 0, 0});
+  EXPECT_DOUBLE_EQ(b.x, -walk.params().maxBackward);
+  const Pose2 c = walk.clipSpeed({10, 10, 10});  // combined: inside the ellipsoid of the limits
+  const double n = std::pow(c.x / walk.params().maxForward, 2) + std::pow(c.y / walk.params().maxSide, 2) +
+                   std::pow(c.theta / walk.params().maxTurn, 2);
+  EXPECT_NEAR(n, 1.0, 1e-9);
+}
+
+struct Case {
+  const char* name;
+  Pose2 speed;
+};
+
+// Straight lines and turning on the spot: no fall, the commanded direction, odometry close.
+TEST(Walk, WalksForwardBackwardSidewaysAndTurns) {
+  for (const Case& c : {Case{"forward", {0.3, 0, 0}}, Case{"backward", {-0.15, 0, 0}}, Case{"left", {0, 0.15, 0}},
+                        Case{"turn", {0, 0, 60 * kDeg}}}) {
+    sim::WalkRunOptions o;
+    o.speed = c.speed;
+    o.seconds = seconds(6);
+    const sim::WalkRunResult r = sim::runWalk(o);
+    std::printf("%s: forward %.0f mm/s, sideways %.0f mm/s, turn %.1f deg/s, odometry error %.1f%%, max tilt %.1f deg\n",
+                c.name, r.forwardSpeed * 1000, r.sidewaysSpeed * 1000, r.turnRate / kDeg, 100 * r.odometryErrorRatio,
+                r.maxTilt / kDeg);
+    EXPECT_EQ(r.falls, 0) << c.name;
+    EXPECT_LT(r.maxTilt, 15 * kDeg) << c.name;
+    // Speeds are measured over the whole time, the start's acceleration included.
+    if (c.speed.x > 0) {
+      EXPECT_GT(r.forwardSpeed, 0.8 * c.speed.x) << c.name;
+    } else if (c.speed.x < 0) {
+      EXPECT_LT(r.forwardSpeed, 0.8 * c.speed.x) << c.name;
+    }
+    if (c.speed.y > 0) {
+      EXPECT_GT(r.sidewaysSpeed, 0.8 * c.speed.y) << c.name;
+    }
+    if (c.speed.theta > 0) {
+      EXPECT_GT(r.turnRate, 0.8 * c.speed.theta) << c.name;
+    } else {
+      EXPECT_LT(std::abs(r.turned), 5 * kDeg) << c.name;  // heading held
+    }
+    if (r.distance > 0.3) {
+      EXPECT_LT(r.odometryErrorRatio, 0.1) << c.name;
+    }
+    EXPECT_LT(r.odometryAngleError, 5 * kDeg) << c.name;
+  }
+}
+
+TEST(Walk, RandomizedRobotWalksToo) {
+  sim::WalkRunOptions o;
+  o.speed = {0.25, 0.05, 20 * kDeg};
+  o.seconds = seconds(6);
+  o.randomize = true;
+  o.seed = 3;
+  const sim::WalkRunResult r = sim::runWalk(o);
+  ASSERT_TRUE(r.variation.randomized);
+  EXPECT_EQ(r.falls, 0);
+  EXPECT_GT(r.distance, 0.5 * 0.25 * o.seconds);
+}
+
+TEST(MotionEngine, WalksToATargetOnOdometry) {
+  sim::WalkToOptions o;
+  o.target = Pose2(quick() ? 0.6 : 1.2, quick() ? 0.2 : -0.5, 60 * kDeg);
+  o.timeLimit = 30;
+  const sim::WalkToResult r = sim::runWalkTo(o);
+  std::printf("walk to: reached %d after %.1f s, error %.1f mm, %.1f deg\n", r.reached, r.time, r.positionError * 1000,
+              r.angleError / kDeg);
+  EXPECT_TRUE(r.reached);
+  EXPECT_EQ(r.falls, 0);
+  EXPECT_LT(r.positionError, 0.05);
+  EXPECT_LT(r.angleError, 5 * kDeg);
+}
+
+TEST(RobotProgram, MotionModulesRunAndTheRobotWalks) {
+  sim::SceneSpec spec;
+  sim::World world(spec);
+  world.placeRobot(0, Eigen::Vector3d::Zero(), Walk().standPosture());
+  sim::SimBackend backend(world, 0);
+  RobotProgram program;
+  const auto order = program.moduleOrder();
+  EXPECT_NE(std::find(order.begin(), order.end(), "MotionEngine"), order.end());
+  EXPECT_NE(std::find(order.begin(), order.end(), "HeadControl"), order.end());
+  EXPECT_NE(std::find(order.begin(), order.end(), "CameraMatrixProvider"), order.end());
+  for (int i = 0; i < 150; ++i) ASSERT_TRUE(program.cycle(backend));
+  MotionRequest walk;
+  walk.motion = MotionType::Walk;
+  walk.walkSpeed = Pose2(0.2, 0, 0);
+  program.blackboard().write<MotionRequest>() = walk;
+  HeadMotionRequest head;
+  head.mode = HeadMotionRequest::Mode::Angles;
+  head.yaw = 0.5;
+  program.blackboard().write<HeadMotionRequest>() = head;
+  const double x0 = world.robotPose(0).x();
+  for (int i = 0; i < static_cast<int>(seconds(4) / kCycleTime); ++i) ASSERT_TRUE(program.cycle(backend));
+  EXPECT_GT(world.robotPose(0).x() - x0, 0.5 * 0.2 * seconds(4));
+  EXPECT_TRUE(program.blackboard().read<MotionInfo>().upright);
+  EXPECT_NEAR(program.blackboard().read<SensorFrame>().joints.position[HeadYaw], 0.5, 0.05);
+  // Odometry follows the walk.
+  EXPECT_GT(program.blackboard().read<Odometry>().pose.x, 0.4 * 0.2 * seconds(4));
+}
+
+TEST(World, VariationOfTheSimulatedRobot) {
+  sim::SceneSpec spec;
+  sim::World world(spec);
+  const JointArray stand = Walk().standPosture();
+  JointArray offsets{};
+  offsets[LKneePitch] = 1 * kDeg;
+  world.setJointOffsets(0, offsets);
+  world.placeRobot(0, Eigen::Vector3d::Zero(), stand);
+  for (int i = 0; i < 50; ++i) world.stepCycle();
+  const mjModel* m = world.model();
+  const int knee = mj_name2id(m, mjOBJ_JOINT, "r0/LKneePitch");
+  // The knee truly stands 1 deg further than its reading says.
+  const double truth = world.data()->qpos[m->jnt_qposadr[knee]];
+  EXPECT_NEAR(truth - world.sensors(0).joints.position[LKneePitch], 1 * kDeg, 1e-9);
+  EXPECT_EQ(world.jointOffsets(0)[LKneePitch], offsets[LKneePitch]);
+  const double mass = world.scaleLinkMasses(0, 0.05, 7);
+  EXPECT_NEAR(mass, totalMass(), 0.05 * totalMass() + 1e-3);
+  EXPECT_NE(mass, totalMass());
+  world.setFloorFriction(0.6);
+  EXPECT_THROW(world.setFloorFriction(-1), Error);
+  EXPECT_THROW(world.scaleLinkMasses(0, 0.9, 1), Error);
+}
+
+TEST(HeadControl, CalibrationPatternAndLookAt) {
+  const auto& pattern = HeadControl::calibrationPattern();
+  ASSERT_EQ(pattern.size(), 6u);
+  int top = 0;
+  for (const auto& v : pattern) top += v.camera == CameraId::Top;
+  EXPECT_EQ(top, 3);
+  // Looking at a point: the camera's optical axis passes through it.
+  const Eigen::Isometry3d torsoPose = robotToTorso(Walk().standPosture(), 0.02, -0.03);
+  for (CameraId cam : {CameraId::Top, CameraId::Bottom}) {
+    for (const Eigen::Vector3d& p : {Eigen::Vector3d(1.5, 0.4, 0), Eigen::Vector3d(0.6, -0.3, 0.05), Eigen::Vector3d(3, 1, 0)}) {
+      const Eigen::Vector2d a = HeadControl::anglesToLookAt(p, cam, torsoPose);
+      JointArray j = Walk().standPosture();
+      j[HeadYaw] = a.x();
+      j[HeadPitch] = a.y();
+      if (a.y() <= jointMin(HeadPitch) + 1e-9 || a.y() >= jointMax(HeadPitch) - 1e-9) continue;  // out of the range
+      const Eigen::Isometry3d camera = torsoPose * torsoToCamera(j, cam);
+      const Eigen::Vector3d d = (p - camera.translation()).normalized();
+      EXPECT_NEAR(d.dot(camera.linear().col(0)), 1.0, 1e-6);
+    }
+  }
+}
+
+TEST(HeadControl, MovesWithinItsSpeedLimitAndSettles) {
+  HeadControl head;
+  HeadMotionRequest request;
+  request.mode = HeadMotionRequest::Mode::Calibration;
+  request.calibrationIndex = 2;
+  SensorFrame f;
+  double last = 0;
+  bool settled = false;
+  for (int i = 0; i < 300; ++i) {
+    f.time = i * kCycleTime;
+    const HeadJointRequest out = head.update(f, request);
+    EXPECT_LE(std::abs(out.yaw - last), head.goal().norm() > 0 ? HeadControl::Params{}.maxYawSpeed * kCycleTime + 1e-9 : 1.0);
+    last = out.yaw;
+    // An ideal servo: the joints are where they were asked to be.
+    f.joints.position[HeadYaw] = out.yaw;
+    f.joints.position[HeadPitch] = out.pitch;
+    settled = settled || head.settled();
+  }
+  EXPECT_TRUE(settled);
+  EXPECT_NEAR(last, HeadControl::calibrationPattern()[2].yaw, 1e-9);
+}
+
+}  // namespace
+}  // namespace nao
