@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (LoLA and GameController parsers) with Debian's clang in
-# build-fuzz and runs each one.
+# build-fuzz (or $NAO_FUZZ_BUILD_DIR) and runs them one after the other, one job each.
 #   bash .ci/fuzz.sh              1,000,000 executions each (the figure the README quotes)
 #   bash .ci/fuzz.sh -runs N      N executions each
 #   bash .ci/fuzz.sh -seconds S   S seconds each (CI)
-# Exit 0 when no target found a crash; findings are written to build-fuzz/findings/.
+# Exit 0 when no target found a crash; findings are written to <build dir>/findings/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+b="${NAO_FUZZ_BUILD_DIR:-build-fuzz}"
 limit="-runs=1000000"
 case "${1:-}" in
   -runs) limit="-runs=${2:?}" ;;
@@ -14,21 +15,21 @@ case "${1:-}" in
   "") ;;
   *) echo "usage: $0 [-runs N | -seconds S]" >&2; exit 2 ;;
 esac
-cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNAO_FUZZ=ON \
+cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNAO_FUZZ=ON \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
-cmake --build build-fuzz --target lola_fuzz gamecontroller_fuzz fuzz_seeds -j2
-build-fuzz/bin/fuzz_seeds build-fuzz/seeds
-mkdir -p build-fuzz/findings
+cmake --build "$b" --target lola_fuzz gamecontroller_fuzz fuzz_seeds -j2
+"$b"/bin/fuzz_seeds "$b"/seeds
+mkdir -p "$b"/findings
 for target in lola gamecontroller; do
-  corpus=build-fuzz/corpus/$target
+  corpus="$b"/corpus/$target
   mkdir -p "$corpus"
-  log=build-fuzz/$target.log
+  log="$b"/$target.log
   # The GameController target binds a UDP socket on loopback once; nothing is sent anywhere.
-  if ! build-fuzz/bin/${target}_fuzz "$limit" -dict=tests/fuzz/$target.dict -max_len=4096 \
-      -artifact_prefix=build-fuzz/findings/$target- -print_final_stats=1 \
-      "$corpus" build-fuzz/seeds/$target >"$log" 2>&1; then
+  if ! "$b"/bin/${target}_fuzz "$limit" -dict=tests/fuzz/$target.dict -max_len=4096 \
+      -artifact_prefix="$b"/findings/$target- -print_final_stats=1 \
+      "$corpus" "$b"/seeds/$target >"$log" 2>&1; then
     tail -n 40 "$log" >&2
-    echo "fuzz: $target FOUND A CRASH (input in build-fuzz/findings/, log $log)" >&2
+    echo "fuzz: $target FOUND A CRASH (input in $b/findings/, log $log)" >&2
     exit 1
   fi
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")

@@ -121,7 +121,7 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
         ok = true;
         break;
       }
-    if (!ok && std::getenv("NAO_LINESTAT")) {  // TEMP
+    if (!ok && std::getenv("NAO_LINESTAT")) {  // debugging aid: each miss / false line
       const Eigen::Vector2d cam = world.cameraPose(0, camera).translation().head<2>();
       const Eigen::Vector2d u = (tl.to - tl.from).normalized();
       const double t = std::clamp((cam - tl.from).dot(u), 0.0, tl.visibleLength);
@@ -141,7 +141,7 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
         ok = true;
         break;
       }
-    if (!ok && std::getenv("NAO_LINESTAT")) {  // TEMP
+    if (!ok && std::getenv("NAO_LINESTAT")) {  // debugging aid: each miss / false line
       double bestA = 1e9, bestD0 = 0, bestD1 = 0;
       const Eigen::Vector2d ud = (d.second - d.first).normalized();
       for (const auto& fl : field.lines) {

@@ -2,7 +2,7 @@
 # the GameController protocol and buttons, V4L2 against a test double of the ioctl layer.
 
 # A stand-in for the NAO's LoLA daemon: its own msgpack encoder/decoder, a real Unix socket,
-# the real nao-soccer as its client (run by lola_test).
+# the real nao-soccer as its client (ctest lola_peer_test).
 add_executable(lola_peer lola_peer.cpp)
 target_link_libraries(lola_peer PRIVATE ${NAO_MSGPACK_TARGET})
 target_compile_definitions(lola_peer PRIVATE MSGPACK_NO_BOOST)
@@ -12,13 +12,18 @@ nao_warnings(lola_peer)
 # runs alone (RUN_SERIAL): "no late answer" is a claim about normal load, not about a machine
 # busy with other tests.
 add_test(NAME lola_peer_test COMMAND lola_peer --nao-soccer $<TARGET_FILE:nao-soccer> --cycles 1000)
-set_tests_properties(lola_peer_test PROPERTIES RUN_SERIAL TRUE TIMEOUT 300 LABELS "nao;wip")
+set_tests_properties(lola_peer_test PROPERTIES RUN_SERIAL TRUE TIMEOUT 300 LABELS "nao")
 
-nao_add_test(lola_test SOURCES lola_test.cpp LIBS nao_robot ${NAO_MSGPACK_TARGET})
+nao_add_test(lola_test SOURCES lola_test.cpp LIBS nao_robot ${NAO_MSGPACK_TARGET} LABELS nao)
 target_compile_definitions(lola_test PRIVATE MSGPACK_NO_BOOST)
 
-nao_add_test(gamecontroller_test SOURCES gamecontroller_test.cpp LIBS nao_robot)
-nao_add_test(v4l2_test SOURCES v4l2_test.cpp LIBS nao_robot)
+nao_add_test(gamecontroller_test SOURCES gamecontroller_test.cpp LIBS nao_robot LABELS nao)
+nao_add_test(v4l2_test SOURCES v4l2_test.cpp LIBS nao_robot LABELS nao)
+
+# robot/deploy/deploy.sh --dry-run: the staged folder, the venue's field file in place, the
+# staged start script running the staged program.
+add_test(NAME deploy_test COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/deploy_test.sh $<TARGET_FILE:nao-soccer> ${CMAKE_SOURCE_DIR})
+set_tests_properties(deploy_test PROPERTIES TIMEOUT 120 LABELS "nao")
 
 # libFuzzer targets for the two parsers that read bytes from the network (.ci/fuzz.sh builds
 # and runs them in build-fuzz with clang). The parsers are compiled into each target with

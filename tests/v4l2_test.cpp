@@ -7,13 +7,20 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <linux/videodev2.h>
+#include <stdlib.h>
 #include <sys/mman.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <time.h>
+#include <unistd.h>
 
+#include <cstring>
 #include <deque>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "robot/nao/NaoBackend.h"
 #include "robot/nao/V4l2Camera.h"
 
 namespace nao {
@@ -41,6 +48,8 @@ class FakeDriver : public V4l2Device {
   int openErrno = 0;    // every open fails with this while non-zero
   int dqbufErrno = 0;   // the next DQBUF fails with this
   bool pollError = false;
+  // The clock the driver stamps its buffers with (UVC and most sensor drivers: monotonic).
+  std::uint32_t timestampClock = V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC;
 
   // What happened.
   std::vector<std::string> calls;
@@ -59,7 +68,7 @@ class FakeDriver : public V4l2Device {
       for (std::uint32_t x = 0; x < width_ * 2; ++x)
         b.memory[r * stride() + x] = static_cast<std::uint8_t>(seed + r * 3 + x);
     b.bytesused = bytesused ? bytesused : stride() * height_;
-    b.flags = flags | V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC;
+    b.flags = flags | timestampClock;
     b.timestamp.tv_sec = static_cast<long>(timestamp);
     b.timestamp.tv_usec = static_cast<long>((timestamp - static_cast<double>(b.timestamp.tv_sec)) * 1e6 + 0.5);
     done_.push_back(i);
@@ -68,6 +77,11 @@ class FakeDriver : public V4l2Device {
   std::size_t queued() const { return queued_.size(); }
   std::uint32_t stride() const { return width_ * 2 + padding; }
   int controlValue(std::uint32_t id) const { return controls.at(id).value; }
+  bool owns(const void* address) const {
+    for (const auto& b : buffers_)
+      if (b.memory.data() == address) return true;
+    return false;
+  }
 
   int open(const std::string& p, int flags) override {
     calls.push_back("open");
@@ -484,6 +498,135 @@ TEST_F(V4l2, ClosesCleanly) {
   EXPECT_FALSE(driver->streaming);
   const auto& c = driver->calls;
   EXPECT_NE(std::find(c.begin(), c.end(), "STREAMOFF"), c.end());
+}
+
+TEST_F(V4l2, WithoutAKernelTimestampTheFrameIsStampedWhenTaken) {
+  driver->timestampClock = V4L2_BUF_FLAG_TIMESTAMP_UNKNOWN;
+  make();
+  ASSERT_TRUE(camera->open(50.0));
+  ASSERT_TRUE(driver->capture(1, 3.0));  // a driver's own clock, unrelated to CLOCK_MONOTONIC
+  CameraImage img;
+  ASSERT_TRUE(camera->grab(img, 50.2));
+  EXPECT_DOUBLE_EQ(img.timestamp, 50.2);
+}
+
+// Two fake drivers behind one V4l2Device, told apart by path (the NAO's two cameras), each
+// with its own descriptor.
+class TwoCameras : public V4l2Device {
+ public:
+  std::shared_ptr<FakeDriver> top = std::make_shared<FakeDriver>(), bottom = std::make_shared<FakeDriver>();
+  TwoCameras() { bottom->path = "/dev/video-bottom"; }
+  int open(const std::string& path, int flags) override {
+    FakeDriver& d = path == bottom->path ? *bottom : *top;
+    const int fd = d.open(path, flags);
+    return fd < 0 ? fd : fd + (&d == bottom.get() ? kBottom : 0);
+  }
+  int close(int fd) override { return of(fd).close(raw(fd)); }
+  int ioctl(int fd, unsigned long request, void* arg) override { return of(fd).ioctl(raw(fd), request, arg); }
+  void* mmap(std::size_t length, int fd, off_t offset) override { return of(fd).mmap(length, raw(fd), offset); }
+  int munmap(void* address, std::size_t length) override {
+    // Each driver's buffers are its own memory: ask the one that owns it.
+    return (top->owns(address) ? *top : *bottom).munmap(address, length);
+  }
+  int poll(pollfd* fds, nfds_t count, int timeoutMs) override {
+    pollfd p = fds[0];
+    p.fd = raw(p.fd);
+    const int n = of(fds[0].fd).poll(&p, count, timeoutMs);
+    fds[0].revents = p.revents;
+    return n;
+  }
+
+ private:
+  static constexpr int kBottom = 1000;
+  FakeDriver& of(int fd) { return fd >= kBottom ? *bottom : *top; }
+  static int raw(int fd) { return fd >= kBottom ? fd - kBottom : fd; }
+};
+
+double monotonicNow() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<double>(ts.tv_sec) + ts.tv_nsec * 1e-9;
+}
+
+// The backend's camera path (`--cameras v4l2`): both devices opened with the documented
+// settings, the top image turned upright, kernel timestamps moved onto the backend clock that
+// the sensor frames use. LoLA is a listening Unix socket here (the backend only connects).
+TEST(NaoBackendCameras, DeliverBothCamerasOnTheBackendClock) {
+  char dir[] = "/tmp/v4l2_test.XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  const std::string socketPath = std::string(dir) + "/lola.sock";
+  const int listener = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::snprintf(addr.sun_path, sizeof addr.sun_path, "%s", socketPath.c_str());
+  ASSERT_EQ(::bind(listener, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  ASSERT_EQ(::listen(listener, 1), 0);
+
+  auto cams = std::make_shared<TwoCameras>();
+  NaoBackendConfig config;
+  config.lolaSocket = socketPath;
+  config.connectTimeout = 2;
+  config.v4l2 = cams;
+  std::vector<std::string> log;
+  {
+    NaoBackend backend(config, [&](const std::string& l) { log.push_back(l); });
+    // The documented settings: top 640x480 flipped by the driver, bottom 320x240, 30 Hz.
+    EXPECT_EQ(cams->top->requested_.width, 640u);
+    EXPECT_EQ(cams->top->requested_.height, 480u);
+    EXPECT_EQ(cams->bottom->requested_.width, 320u);
+    EXPECT_EQ(cams->bottom->requested_.height, 240u);
+    EXPECT_EQ(cams->top->timePerFrame.denominator, 30u);
+    EXPECT_EQ(cams->bottom->timePerFrame.denominator, 30u);
+    EXPECT_EQ(cams->top->controlValue(V4L2_CID_VFLIP), 1);
+    EXPECT_EQ(cams->bottom->controlValue(V4L2_CID_VFLIP), 0);
+
+    CameraImage img;
+    EXPECT_FALSE(backend.takeImage(CameraId::Top, img));  // nothing captured yet
+    // Exposures taken 40 ms and 5 ms before now, by the kernel's CLOCK_MONOTONIC. The backend
+    // clock's offset lies between the two readings around it.
+    const double before = backend.now();
+    const double now = monotonicNow();
+    const double after = backend.now();
+    ASSERT_TRUE(cams->top->capture(11, now - 0.040));
+    ASSERT_TRUE(cams->bottom->capture(22, now - 0.005));
+    ASSERT_TRUE(backend.takeImage(CameraId::Top, img));
+    EXPECT_EQ(img.camera, CameraId::Top);
+    EXPECT_EQ(img.width, 640);
+    EXPECT_EQ(img.yuyv[0], static_cast<std::uint8_t>(11));
+    const double us = 1e-6;  // V4L2 stamps in microseconds
+    EXPECT_GE(img.timestamp, before - 0.040 - us);
+    EXPECT_LE(img.timestamp, after - 0.040 + us);
+    ASSERT_TRUE(backend.takeImage(CameraId::Bottom, img));
+    EXPECT_EQ(img.camera, CameraId::Bottom);
+    EXPECT_EQ(img.width, 320);
+    EXPECT_EQ(img.yuyv[0], static_cast<std::uint8_t>(22));
+    EXPECT_GE(img.timestamp, before - 0.005 - us);
+    EXPECT_LE(img.timestamp, after - 0.005 + us);
+    EXPECT_FALSE(backend.takeImage(CameraId::Bottom, img));  // each frame once
+  }
+  // The backend's end closes both cameras.
+  EXPECT_EQ(cams->top->fdOpen, 0);
+  EXPECT_EQ(cams->bottom->fdOpen, 0);
+  EXPECT_EQ(cams->top->mapped + cams->bottom->mapped, 0);
+
+  // A camera that is not there does not stop the backend: the other one streams.
+  cams = std::make_shared<TwoCameras>();
+  cams->bottom->openErrno = ENODEV;
+  config.v4l2 = cams;
+  log.clear();
+  {
+    NaoBackend backend(config, [&](const std::string& l) { log.push_back(l); });
+    bool named = false;
+    for (const auto& l : log) named |= l.find("camera bottom (/dev/video-bottom): open: No such device") != std::string::npos;
+    EXPECT_TRUE(named);
+    ASSERT_TRUE(cams->top->capture(3, monotonicNow()));
+    CameraImage img;
+    EXPECT_TRUE(backend.takeImage(CameraId::Top, img));
+    EXPECT_FALSE(backend.takeImage(CameraId::Bottom, img));
+  }
+  ::close(listener);
+  ::unlink(socketPath.c_str());
+  ::rmdir(dir);
 }
 
 TEST(V4l2Kernel, MissingDeviceIsReportedNotFatal) {

@@ -16,6 +16,33 @@ double groundSigma(const CameraMatrix& cm, const Eigen::Vector2d& ground, double
 
 namespace {
 
+// Image distance of a spot from the projected ring (through the ring point nearest to it).
+double ringResidualPx(const CameraMatrix& cm, const LineSpot& s, const Eigen::Vector2d& centre, double R) {
+  const Eigen::Vector2d d = s.ground - centre;
+  if (d.norm() < 1e-6) return 1e9;
+  const auto p = cm.projectGround(centre + R * d.normalized());
+  return p ? (*p - s.image).norm() : 1e9;
+}
+
+// Less than half the ring in view: its spots must bend in the image, i.e. the projected ring
+// must explain them clearly better than a straight image line (a straight line's spots can
+// lie within the ring's band for a while, and far away the ground range error hides the bend).
+bool bendsInImage(const CameraMatrix& cm, const std::vector<LineSpot>& spots, const std::vector<int>& members,
+                  const Eigen::Vector2d& centre, double R) {
+  if (members.size() < 4) return false;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (int k : members) mean += spots[k].image;
+  mean /= static_cast<double>(members.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (int k : members) cov += (spots[k].image - mean) * (spots[k].image - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+  const double lineRms = std::sqrt(std::max(0.0, es.eigenvalues()(0)) / members.size());
+  double ring2 = 0;
+  for (int k : members) ring2 += std::pow(ringResidualPx(cm, spots[k], centre, R), 2);
+  const double ringRms = std::sqrt(ring2 / members.size());
+  return lineRms > 1.5 && lineRms > 2 * ringRms;
+}
+
 struct Hypothesis {
   Eigen::Vector2d centre;
   int support = 0;
@@ -139,7 +166,11 @@ LinesPercept::Circle detectCircle(const LineCandidates& candidates, const Camera
       members.clear(), pts.clear(), sig.clear();
       for (std::size_t i = 0; i < spots.size(); ++i) {
         const double r = std::abs((spots[i].ground - centre).norm() - R);
-        if (r < 2.5 * sigma[i] + 0.03) members.push_back(static_cast<int>(i)), pts.push_back(spots[i].ground), sig.push_back(sigma[i]);
+        if (r > 2.5 * sigma[i] + 0.03) continue;
+        // On the ground the range error grows with the square of the distance; in the image
+        // the spot must lie on the ring's projection within a line's thickness there.
+        if (ringResidualPx(cm, spots[i], centre, R) > 1.5 + 0.5 * spots[i].expectedPx) continue;
+        members.push_back(static_cast<int>(i)), pts.push_back(spots[i].ground), sig.push_back(sigma[i]);
       }
       if (static_cast<int>(members.size()) < params.minSpots) break;
       centre = fitCircleCentre(pts, sig, centre, R);
@@ -172,7 +203,7 @@ LinesPercept::Circle detectCircle(const LineCandidates& candidates, const Camera
         const int k = order[(start + i) % order.size()].second;
         pts.push_back(spots[k].ground), sig.push_back(sigma[k]);
       }
-      if (gap > M_PI && !looksLikeArc(pts, sig, R)) continue;
+      if (gap > M_PI && !bendsInImage(cm, spots, members, centre, R)) continue;
     }
 
     // 3. The white test along the ring where it is in view.

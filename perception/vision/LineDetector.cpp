@@ -57,7 +57,8 @@ void collectSpots(const std::vector<ScanLine>& lines, bool vertical, int imageWi
   byScan.assign(lines.size(), {});
   for (int i = 0; i < static_cast<int>(lines.size()); ++i) {
     const ScanLine& sl = lines[i];
-    for (const ScanRegion& r : sl.regions) {
+    for (std::size_t ri = 0; ri < sl.regions.size(); ++ri) {
+      const ScanRegion& r = sl.regions[ri];
       if (!field.isWhiteRegion(r)) continue;
       // A white region that starts where the scan line starts (the field boundary) may be a
       // wall or a board beyond the field; one cut by the image border has an unknown middle.
@@ -65,12 +66,19 @@ void collectSpots(const std::vector<ScanLine>& lines, bool vertical, int imageWi
       if (r.to >= (vertical ? imageHeight : imageWidth) || (!vertical && r.from <= 0)) continue;
       const double along = 0.5 * (r.from + r.to);
       const Eigen::Vector2d px = vertical ? Eigen::Vector2d(sl.coord + 0.5, along) : Eigen::Vector2d(along, sl.coord + 0.5);
-      if (obstacles.contains(px.x(), px.y()) || nearBall(ball, px)) continue;
+      if (nearBall(ball, px)) continue;
       const GroundScale gs = groundScale(cm, px, params.lineWidth);
       if (!gs.valid) continue;
       const double expected = std::max(0.3, vertical ? gs.alongPx : gs.acrossPx);
       const double thickness = r.to - r.from;
       if (thickness > params.maxThicknessFactor * expected + 2) continue;
+      // Inside an obstacle's box only paint with field right above and below it on a vertical
+      // scan line counts (a line passing behind a robot's shoulder; a robot's parts are tall).
+      if (obstacles.contains(px.x(), px.y())) {
+        const bool fieldAbove = ri > 0 && sl.regions[ri - 1].cls == RegionClass::Field;
+        const bool fieldBelow = ri + 1 < sl.regions.size() && sl.regions[ri + 1].cls == RegionClass::Field;
+        if (!vertical || !fieldAbove || !fieldBelow || thickness > 2 * expected + 2) continue;
+      }
       LineSpot s;
       s.image = px;
       s.ground = gs.ground;
@@ -167,7 +175,7 @@ void chainSpots(const std::vector<ScanLine>& lines, const std::vector<LineSpot>&
 
 // Douglas-Peucker in the image: splits a chain where it deviates from the straight line
 // between its ends by more than the spots' noise.
-void splitStraight(const std::vector<LineSpot>& spots, const SpotChain& chain, int a, int b,
+void splitStraight(const std::vector<LineSpot>& spots, const SpotChain& chain, int chainIndex, int a, int b,
                    std::vector<SpotChain>& out) {
   if (b - a + 1 < 2) return;
   const Eigen::Vector2d p = spots[chain.spots[a]].image, q = spots[chain.spots[b]].image;
@@ -182,12 +190,13 @@ void splitStraight(const std::vector<LineSpot>& spots, const SpotChain& chain, i
   }
   expected /= (b - a + 1);
   if (worst > 1.5 + 0.25 * expected && worstIdx > a && worstIdx < b) {
-    splitStraight(spots, chain, a, worstIdx, out);
-    splitStraight(spots, chain, worstIdx, b, out);
+    splitStraight(spots, chain, chainIndex, a, worstIdx, out);
+    splitStraight(spots, chain, chainIndex, worstIdx, b, out);
     return;
   }
   SpotChain s;
   s.vertical = chain.vertical;
+  s.chain = chainIndex;
   s.spots.assign(chain.spots.begin() + a, chain.spots.begin() + b + 1);
   out.push_back(std::move(s));
 }
@@ -203,7 +212,9 @@ LineCandidates findLineCandidates(const CameraImage& image, const ScanLineRegion
   chainSpots(regions.vertical, c.spots, byScan, true, c.chains);
   collectSpots(regions.horizontal, false, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
   chainSpots(regions.horizontal, c.spots, byScan, false, c.chains);
-  for (const SpotChain& ch : c.chains) splitStraight(c.spots, ch, 0, static_cast<int>(ch.spots.size()) - 1, c.segments);
+  for (std::size_t i = 0; i < c.chains.size(); ++i)
+    splitStraight(c.spots, c.chains[i], static_cast<int>(i), 0, static_cast<int>(c.chains[i].spots.size()) - 1,
+                  c.segments);
   return c;
 }
 
@@ -376,6 +387,42 @@ double refineAcross(const CameraImage& image, const CameraMatrix& cm, Merged& m,
   return std::sqrt(r2 / keep.size());
 }
 
+// A chain that bends gently, always the same way, and fits the centre circle's radius on
+// the ground better than a line: its straight pieces are chords of the circle, not lines
+// (the circle detector may have missed the circle, e.g. when little of it is in view). An L
+// or T corner bends by ~90 deg at one point and is left alone.
+std::vector<char> arcChains(const LineCandidates& c, const CameraMatrix& cm, double radius) {
+  std::vector<char> arc(c.chains.size(), 0);
+  std::vector<std::vector<int>> pieces(c.chains.size());
+  for (std::size_t s = 0; s < c.segments.size(); ++s)
+    if (c.segments[s].chain >= 0) pieces[c.segments[s].chain].push_back(static_cast<int>(s));
+  for (std::size_t i = 0; i < c.chains.size(); ++i) {
+    if (pieces[i].size() < 2 || c.chains[i].spots.size() < 6) continue;
+    // Bends between consecutive pieces, on the ground.
+    double turnSign = 0;
+    bool gentle = true;
+    for (std::size_t k = 0; k + 1 < pieces[i].size() && gentle; ++k) {
+      const auto& p = c.segments[pieces[i][k]].spots;
+      const auto& q = c.segments[pieces[i][k + 1]].spots;
+      const Eigen::Vector2d d0 = c.spots[p.back()].ground - c.spots[p.front()].ground;
+      const Eigen::Vector2d d1 = c.spots[q.back()].ground - c.spots[q.front()].ground;
+      if (d0.norm() < 1e-6 || d1.norm() < 1e-6) continue;
+      const double turn = std::atan2(d0.x() * d1.y() - d0.y() * d1.x(), d0.dot(d1));
+      if (std::abs(turn) > 35 * M_PI / 180 || turn * turnSign < 0) gentle = false;
+      if (std::abs(turn) > 2 * M_PI / 180) turnSign = turn;
+    }
+    if (!gentle) continue;
+    std::vector<Eigen::Vector2d> pts;
+    std::vector<double> sigma;
+    for (int k : c.chains[i].spots) {
+      pts.push_back(c.spots[k].ground);
+      sigma.push_back(groundSigma(cm, c.spots[k].ground));
+    }
+    arc[i] = looksLikeArc(pts, sigma, radius);
+  }
+  return arc;
+}
+
 }  // namespace
 
 std::vector<LinesPercept::Line> fitLines(const LineCandidates& candidates, const std::vector<char>& excludedSpots,
@@ -384,7 +431,14 @@ std::vector<LinesPercept::Line> fitLines(const LineCandidates& candidates, const
                                          const LineParams& params, std::vector<RejectedLine>* rejected) {
   const auto& spots = candidates.spots;
   std::vector<Merged> lines;
+  const std::vector<char> arc = arcChains(candidates, cm, params.circleRadius);
   for (const SpotChain& seg : candidates.segments) {
+    if (seg.chain >= 0 && arc[seg.chain]) {
+      if (rejected && seg.spots.size() >= 2)
+        rejected->push_back({spots[seg.spots.front()].image, spots[seg.spots.back()].image,
+                             static_cast<int>(seg.spots.size()), "arc chain", 0});
+      continue;
+    }
     int excluded = 0;
     for (int k : seg.spots) excluded += !excludedSpots.empty() && excludedSpots[k];
     if (2 * excluded >= static_cast<int>(seg.spots.size())) continue;

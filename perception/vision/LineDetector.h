@@ -27,7 +27,7 @@ struct LineParams {
   int minSpotsRefined = 2;        // per reported line whose sub-pixel refinement succeeded
   double minLengthM = 0.25;       // per reported line (on the ground)
   double maxDistanceM = 5;        // lines whose nearest point is farther are not reported
-  double maxAngleSigmaDeg = 3;    // lines whose direction on the ground is less certain are not reported
+  double maxAngleSigmaDeg = 2;    // lines whose direction on the ground is less certain are not reported
   double spotSigmaPx = 0.5;       // least position error of a line spot (px)
   double refinedSigmaPx = 0.25;   // least position error of a sub-pixel centre across the line (px)
 };
@@ -54,6 +54,7 @@ struct LineSpot {
 struct SpotChain {
   std::vector<int> spots;
   bool vertical = true;
+  int chain = -1;  // for a segment: the chain it was split from
 };
 
 struct LineCandidates {

@@ -20,6 +20,7 @@ struct Run {
   double x;
   int top, bottom;
   double legPx;  // image width of a robot's leg at the run's foot
+  bool fromTop;  // reaches up to the field boundary (or the scan line's start): its top is not seen
 };
 
 // Image size of a vertical stretch of `height` standing at the ground point of pixel (x, y),
@@ -83,7 +84,7 @@ ObstaclesPercept detectObstacles(const CameraImage& image, const ScanLineRegions
       const bool fromTop = top <= std::max<double>(line.start, boundaryY) + std::max(kBelowBoundaryPx, 0.25 * hPx);
       // Robot-tall, or reaching up to the boundary (or the image top) and much taller than a
       // field line is wide there (its image height is smaller still).
-      if (len >= hPx || (fromTop && len >= 3.0 * wPx)) runs.push_back({x, top, bottom, 2 * wPx});
+      if (len >= hPx || (fromTop && len >= 3.0 * wPx)) runs.push_back({x, top, bottom, 2 * wPx, fromTop});
     }
   }
   if (runs.empty()) return out;
@@ -109,6 +110,7 @@ ObstaclesPercept detectObstacles(const CameraImage& image, const ScanLineRegions
   std::vector<int> index(runs.size(), -1);
   std::vector<ObstaclesPercept::Obstacle> boxes;
   std::vector<double> minX, maxX;
+  std::vector<char> topUnseen;
   for (std::size_t a = 0; a < runs.size(); ++a) {
     const int root = find(static_cast<int>(a));
     if (index[root] < 0) {
@@ -116,12 +118,14 @@ ObstaclesPercept detectObstacles(const CameraImage& image, const ScanLineRegions
       boxes.push_back({image.width, 0, image.height, 0, Eigen::Vector2d::Zero()});
       minX.push_back(1e9);
       maxX.push_back(-1e9);
+      topUnseen.push_back(0);
     }
     const int i = index[root];
     minX[i] = std::min(minX[i], runs[a].x);
     maxX[i] = std::max(maxX[i], runs[a].x);
     boxes[i].top = std::min(boxes[i].top, runs[a].top);
     boxes[i].bottom = std::max(boxes[i].bottom, runs[a].bottom);
+    topUnseen[i] = topUnseen[i] || runs[a].fromTop;
   }
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     auto& o = boxes[i];
@@ -131,11 +135,13 @@ ObstaclesPercept detectObstacles(const CameraImage& image, const ScanLineRegions
     const double width = maxX[i] - minX[i];
     if (width + image.width / 160.0 < wPx) continue;  // one thin run: a line along the scan line, a post
     if (width > wPx / kMinWidth * kMaxWidth) continue;  // a line just below the boundary, joined to the wall
-    // Half a line spacing beyond the outer runs; up by a robot's height from its feet.
+    // Half a line spacing beyond the outer runs; up by a robot's height from its feet where
+    // the object reaches the boundary (its top is not seen), else to its seen top (field
+    // above it: e.g. the robot's own shoulder in the bottom camera, with a line behind it).
     const int pad = std::max(2, static_cast<int>(0.5 * wPx));
     o.left = std::max(0, static_cast<int>(minX[i]) - pad);
     o.right = std::min(image.width, static_cast<int>(maxX[i]) + pad + 1);
-    o.top = std::max(0, std::min(o.top, static_cast<int>(o.bottom - hPx)));
+    o.top = topUnseen[i] ? std::max(0, std::min(o.top, static_cast<int>(o.bottom - hPx))) : std::max(0, o.top - pad);
     if (const auto g = cm.pixelToGround({footX, o.bottom - 0.5})) o.footRobot = *g;
     out.obstacles.push_back(o);
   }

@@ -1,6 +1,8 @@
 #include "perception/vision/VisionPipeline.h"
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 #include "perception/vision/BallDetector.h"
 #include "perception/vision/CircleDetector.h"
@@ -81,7 +83,12 @@ VisionResult runVision(const CameraImage& image, const CameraMatrix& cm, const V
   std::vector<char> onCircle;
   r.lines.circle = vision::detectCircle(candidates, image, field, r.obstacles, cm, circleParams, &onCircle);
   clock.stage("circle");
-  r.lines.lines = vision::fitLines(candidates, onCircle, image, field, r.obstacles, cm, lineParams);
+  std::vector<vision::RejectedLine> rejected;
+  r.lines.lines = vision::fitLines(candidates, onCircle, image, field, r.obstacles, cm, lineParams, &rejected);
+  if (std::getenv("NAO_LINEDEBUG"))  // debugging aid: why each line candidate was dropped
+    for (const auto& x : rejected)
+      std::fprintf(stderr, "REJECT (%.0f,%.0f)-(%.0f,%.0f) spots %d %s %.3f\n", x.imageFrom.x(), x.imageFrom.y(),
+                   x.imageTo.x(), x.imageTo.y(), x.spots, x.reason, x.value);
   clock.stage("lines");
   r.lines.intersections = vision::detectIntersections(r.lines.lines, cm, r.obstacles);
   vision::PenaltyMarkParams penaltyParams;
