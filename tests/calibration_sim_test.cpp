@@ -2,11 +2,26 @@
 // with the acceptance thresholds of the full one (per parameter median |error| <= 0.1 deg,
 // 95th percentile <= 0.25 deg, every trial converged, Gauss-Newton and Ceres within 0.02 deg,
 // each solve <= 0.2 s, field lines reprojected within 1 px RMS), and no offsets -> zero.
+// Then the `calibrate` command end to end: the estimate against the injected offsets, the
+// paper's Fig. 2 pictures (projected field lines over paint after, not before), the stored
+// result, the same result for the same seed, and bad options.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <cstdlib>
+#include <sys/wait.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "perception/calibration/CalibrationStore.h"
 #include "robot/Paths.h"
 #include "scenarios/Calibrate.h"
 
@@ -60,6 +75,120 @@ TEST(CalibrationSim, LeftStart) {
   ASSERT_TRUE(r.solution.accepted) << r.solution.reason;
   for (int k = 0; k < 6; ++k)
     EXPECT_NEAR(r.estimate.toArray()[k] / kDeg, r.truth.toArray()[k] / kDeg, 0.1) << CameraCalibration::kNames[k];
+}
+
+// ---- The command ----
+
+struct CommandResult {
+  int code = -1;
+  std::string out;  // stdout + stderr
+};
+
+CommandResult runCommand(const std::string& args) {
+  const std::string cmd = std::string(NAO_BINARY) + " " + args + " 2>&1";
+  CommandResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// Of the red pixels drawn into `figure` over the camera image `raw` (placed at `origin` in the
+// figure), the fraction that lie on painted line (a bright, unsaturated pixel of the raw image
+// within 1 px). Projected field lines drawn with good offsets lie on the paint; with wrong ones
+// mostly beside it. Lines hidden behind goal posts and thin far lines keep it below 1.
+double redOnPaint(const cv::Mat& figure, const cv::Mat& raw, cv::Point origin, int* redPixels) {
+  int red = 0, onPaint = 0;
+  for (int y = 0; y < raw.rows; ++y)
+    for (int x = 0; x < raw.cols; ++x) {
+      const cv::Vec3b f = figure.at<cv::Vec3b>(y + origin.y, x + origin.x);  // BGR
+      if (!(f[2] > 150 && f[1] < 90 && f[0] < 90)) continue;
+      ++red;
+      bool paint = false;
+      for (int dy = -1; dy <= 1 && !paint; ++dy)
+        for (int dx = -1; dx <= 1 && !paint; ++dx) {
+          const int yy = y + dy, xx = x + dx;
+          if (yy < 0 || xx < 0 || yy >= raw.rows || xx >= raw.cols) continue;
+          const cv::Vec3b q = raw.at<cv::Vec3b>(yy, xx);
+          paint = q[0] > 140 && q[1] > 140 && q[2] > 140;
+        }
+      onPaint += paint;
+    }
+  *redPixels = red;
+  return red ? static_cast<double>(onPaint) / red : 0;
+}
+
+TEST(CalibrateCommand, EstimatesPicturesStoreAndSameSeedSameResult) {
+  const auto dir = std::filesystem::temp_directory_path() / "nao_calibrate_command_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string images = (dir / "images").string(), store = (dir / "store").string();
+  const std::string common = "calibrate --seed 3 --miscalibration 2.5,-2,-2.5,2.8,2,-2.5 --placement-error 0.05,-0.04,3";
+  const CommandResult r = runCommand(common + " --compare --images " + images + " --save --store " + store +
+                                     " --json " + (dir / "a.json").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json a = readJson((dir / "a.json").string());
+  EXPECT_TRUE(a["converged"].get<bool>());
+  EXPECT_TRUE(a["accepted"].get<bool>());
+  EXPECT_TRUE(a["saved"].get<bool>());
+  EXPECT_LE(a["reprojection_px"].get<double>(), 1.0);
+  EXPECT_GT(a["reprojection_before_px"].get<double>(), 5.0);  // the injected offsets are visible
+  for (const char* name : CameraCalibration::kNames) {
+    EXPECT_NEAR(a["estimated_deg"][name].get<double>(), a["true_deg"][name].get<double>(), 0.1) << name;
+    EXPECT_LE(std::abs(a["other_solver"]["difference_deg"][name].get<double>()), 0.02) << name;
+  }
+
+  // The stored result is the estimate, under the simulated robot's head id.
+  const calibration::CalibrationStore st(store);
+  const auto rec = st.load(a["head_id"].get<std::string>());
+  ASSERT_TRUE(rec.has_value());
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR(rec->offsets.toArray()[k] / kDeg, a["estimated_deg"][CameraCalibration::kNames[k]].get<double>(), 1e-9);
+
+  // Fig. 2: the straight-ahead top and bottom views, projected field lines red.
+  const cv::Mat before = cv::imread(images + "/calibration_before.png"), after = cv::imread(images + "/calibration_after.png");
+  const cv::Mat top = cv::imread(images + "/view_02_top_yaw+000_raw.png"), bottom = cv::imread(images + "/view_07_bottom_yaw+000_raw.png");
+  ASSERT_FALSE(before.empty() || after.empty() || top.empty() || bottom.empty()) << r.out;
+  ASSERT_EQ(after.rows, top.rows + bottom.rows);
+  ASSERT_EQ(after.cols, std::max(top.cols, bottom.cols));
+  const cv::Point topAt((after.cols - top.cols) / 2, 0), bottomAt((after.cols - bottom.cols) / 2, top.rows);
+  int red = 0;
+  const double topAfter = redOnPaint(after, top, topAt, &red);
+  EXPECT_GT(red, 500);
+  const double topBefore = redOnPaint(before, top, topAt, &red);
+  EXPECT_GT(red, 500);
+  const double bottomAfter = redOnPaint(after, bottom, bottomAt, &red);
+  EXPECT_GT(red, 300);
+  const double bottomBefore = redOnPaint(before, bottom, bottomAt, &red);
+  EXPECT_GT(red, 300);
+  std::printf("red on paint: top %.2f -> %.2f, bottom %.2f -> %.2f\n", topBefore, topAfter, bottomBefore, bottomAfter);
+  EXPECT_GE(topAfter, 0.7);
+  EXPECT_GE(bottomAfter, 0.5);
+  EXPECT_LE(topBefore, topAfter - 0.3);
+  EXPECT_LE(bottomBefore, bottomAfter - 0.3);
+
+  // Same seed, same result.
+  const CommandResult again = runCommand(common + " --json " + (dir / "b.json").string());
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_EQ(readJson((dir / "b.json").string())["estimated_deg"], a["estimated_deg"]);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CalibrateCommand, BadOptionsGiveOneLine) {
+  for (const char* args : {"calibrate --solver newton", "calibrate --placement-error 1,0,0", "calibrate --lines hough",
+                           "calibrate --miscalibration 1,2,3"}) {
+    const CommandResult r = runCommand(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << ": " << r.out;
+  }
 }
 
 }  // namespace

@@ -5,8 +5,9 @@
 //
 // The photos come without the robot's joint angles. The camera is taken to be a standing
 // NAO's top camera, pitched so that the masked ball (the largest one, if any) has its true
-// size at its place: what the robot would know from its head joints. Without a ball the
-// head pitch is 20 deg (the horizon above the image, as in these photos).
+// size at its place: what the robot would know from its head joints. Without a ball, the
+// pitch at which the mask's lines have the width of field lines (pitchFromLines); without a
+// mask 20 deg (the horizon above the image, as in these photos).
 //
 // NAO_VISION_DOCS=DIR writes the annotated images (docs/vision/real/ holds them).
 #include <gtest/gtest.h>
@@ -25,6 +26,7 @@
 #include "perception/CameraModel.h"
 #include "perception/vision/Annotate.h"
 #include "perception/vision/BallDetector.h"
+#include "perception/vision/LineDetector.h"
 #include "perception/vision/VisionPipeline.h"
 #include "robot/Error.h"
 #include "sim/ImageIO.h"
@@ -111,6 +113,46 @@ double pitchFromBall(const MaskBall& b, int width, int height) {
   return best;
 }
 
+// Without a ball: the head pitch at which the mask's field lines are as thick as 50 mm lines.
+// Along each column the mask's line runs are at least as tall as a line's width along the view
+// direction there (exactly that where a line runs across the view, taller where it is seen
+// obliquely), so the pitch is the one that brings the low end of the ratios (the 15th
+// percentile) to 1. Runs cut by the image border do not count.
+double pitchFromLines(const cv::Mat& lineMask, int width, int height, double lineWidth) {
+  struct Run {
+    double x, y, len;
+  };
+  std::vector<Run> runs;
+  for (int x = 2; x < lineMask.cols; x += 6) {
+    int y = 0;
+    while (y < lineMask.rows) {
+      if (!lineMask.at<std::uint8_t>(y, x)) {
+        ++y;
+        continue;
+      }
+      const int y0 = y;
+      while (y < lineMask.rows && lineMask.at<std::uint8_t>(y, x)) ++y;
+      if (y0 > 0 && y < lineMask.rows && y - y0 >= 2) runs.push_back({x + 0.5, 0.5 * (y0 + y), double(y - y0)});
+    }
+  }
+  if (runs.size() < 10) return 20;
+  double best = 20, bestErr = 1e9;
+  std::vector<double> ratios;
+  for (double p = -15; p <= 45; p += 0.25) {
+    const CameraMatrix cm = standingCamera(p, width, height);
+    ratios.clear();
+    for (const Run& r : runs) {
+      const vision::GroundScale gs = vision::groundScale(cm, {r.x, r.y}, lineWidth);
+      if (gs.valid && gs.alongPx > 0.3) ratios.push_back(r.len / gs.alongPx);
+    }
+    if (ratios.size() < 10) continue;
+    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() * 15 / 100, ratios.end());
+    const double err = std::abs(std::log(ratios[ratios.size() * 15 / 100]));
+    if (err < bestErr) bestErr = err, best = p;
+  }
+  return best;
+}
+
 struct RealImage {
   std::string stem;  // NNNNN
   bool masked = false;
@@ -165,6 +207,8 @@ TEST(RealImages, LineSpotsOnLinesAndEveryBallFound) {
       const auto largest = std::max_element(mask.balls.begin(), mask.balls.end(),
                                             [](const MaskBall& a, const MaskBall& b) { return a.radius < b.radius; });
       pitch = pitchFromBall(*largest, img.width, img.height);
+    } else if (ri.masked) {
+      pitch = pitchFromLines(mask.line, img.width, img.height, 0.05);
     }
     const CameraMatrix cm = standingCamera(pitch, img.width, img.height);
     const VisionResult r = runVision(img, cm);

@@ -138,9 +138,15 @@ inline bool uninformative(const PixelColour& comparison, const FieldReference& f
 inline bool whitePair(const PixelColour& sample, const PixelColour& comparison, const FieldReference& field) {
   const double dy = sample.y - comparison.y;
   if (dy < std::max(6.0, 0.18 * comparison.y)) return false;
-  if (field.relSat(sample) >= field.relSat(comparison)) return false;
+  // Saturation per unit luminance (YHS2's saturation is relative to brightness too): a line in
+  // a shadow lit by the blue sky has more chroma than the dark grass beside it, but far less
+  // for its luminance.
+  if (field.relSat(sample) / std::max(1.0, sample.y) >= field.relSat(comparison) / std::max(1.0, comparison.y))
+    return false;
   if (sample.y < field.yMin) return false;
   if (!field.isField(comparison, 0.15)) return false;
+  // Sunlit grass beside a shadow is brighter, and no greyer for its luminance; it is still grass.
+  if (field.isField(sample) && field.relSat(sample) > 0.5 * field.fieldRelSatPerY * sample.y) return false;
   return true;
 }
 

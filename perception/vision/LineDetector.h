@@ -24,7 +24,7 @@ struct LineParams {
   double mergeWhiteRatio = 0.75;  // of the white test's pairs along a gap two segments are merged across
   double lineWhiteRatio = 0.6;    // of the white test's pairs along a whole line to report it
   int minSpots = 4;               // per reported line
-  int minSpotsRefined = 2;        // per reported line whose sub-pixel refinement succeeded
+  int minSpotsRefined = 4;        // the same with a sub-pixel refinement (3-spot lines were mostly object edges on real images)
   double minLengthM = 0.25;       // per reported line (on the ground)
   double maxDistanceM = 5;        // lines whose nearest point is farther are not reported
   double maxAngleSigmaDeg = 2;    // lines whose direction on the ground is less certain are not reported
