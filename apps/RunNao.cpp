@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "controllers/RobotProgram.h"
+#include "perception/calibration/CalibrationStore.h"
 #include "perception/FieldDimensions.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
@@ -125,10 +126,28 @@ int runNao(const Args& args) {
     return std::string(f.fallen ? "fallen" : "falling") + " (" + fallDirectionName(f.direction) + ")";
   });
 
+  // The camera calibration stored for this head (config/calibration/<head id>.json), read as
+  // soon as LoLA has told the head id. A broken file is logged and the offsets stay zero: a
+  // wrong calibration must not stop the robot.
+  bool calibrationLoaded = false;
   while (true) {
     bb.write<GameState>() = gameController.state();
     bb.write<LedRequest>().chest = chestColour(gameController.state());
     if (!program.cycle(backend)) break;
+    if (!calibrationLoaded && backend.robotInfo().headId != "unknown") {
+      calibrationLoaded = true;
+      try {
+        const calibration::CalibrationStore store;
+        if (const auto record = store.load(backend.robotInfo().headId)) {
+          bb.write<CameraCalibration>() = record->offsets;
+          logLine("run: camera calibration " + store.pathFor(backend.robotInfo().headId));
+        } else {
+          logLine("run: no camera calibration for head " + backend.robotInfo().headId + " yet (offsets 0)");
+        }
+      } catch (const std::exception& e) {
+        logLine(std::string("run: camera calibration not used: ") + e.what());
+      }
+    }
     const SensorFrame& frame = bb.read<SensorFrame>();
     const ButtonState& pressed = buttons.update(frame.touch, frame.time);
     bb.write<ButtonState>() = pressed;

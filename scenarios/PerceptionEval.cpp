@@ -192,7 +192,7 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
       if ((*seen - tb).norm() < std::max(0.3, 0.2 * dist)) matchesAny = true;
     }
     fig.falseBalls += !matchesAny;
-    if (std::getenv("NAO_BALLSTAT")) std::fprintf(stderr, "BALLSTAT %d\n", matchesAny);  // TEMP
+    if (std::getenv("NAO_BALLSTAT")) std::fprintf(stderr, "BALLSTAT %d\n", matchesAny);  // debugging aid
   }
   auto found = [&](const VisibleBall& b) {
     if (!seen) return false;

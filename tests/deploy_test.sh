@@ -26,7 +26,8 @@ out=$("$src/robot/deploy/deploy.sh" --dry-run --no-build --no-bundle-libs --buil
   --team 12 --player 3 --field "$tmp/venue.json" --extra "--cameras none --lola-socket $tmp/lola.sock" nao-12.local)
 echo "$out"
 stage="$tmp/build/deploy-stage"
-echo "$out" | grep -Eq "rsync +-az +--delete +$stage/ +nao@nao-12.local:nao-soccer/" || fail "no rsync to nao@nao-12.local:nao-soccer/"
+echo "$out" | grep -Eq "rsync +-az +--delete +--exclude +config/calibration/ +$stage/ +nao@nao-12.local:nao-soccer/" ||
+  fail "no rsync to nao@nao-12.local:nao-soccer/ that keeps the robot's config/calibration/"
 for f in bin/nao-soccer bin/nao-soccer-start nao-soccer.service nao-soccer.env config/field_dimensions.json; do
   [ -f "$stage/$f" ] || fail "$f is not staged"
 done

@@ -71,7 +71,9 @@ if [ "$bundle" = 1 ] && [ -z "$toolchain" ]; then
 fi
 echo "deploy: staged $(du -sh "$stage" | cut -f1) in $stage"
 
-rsync_cmd=(rsync -az --delete "$stage/" "$target:nao-soccer/")
+# The robot's own calibration (config/calibration/<head id>.json, written there by the
+# calibration) is neither sent nor deleted.
+rsync_cmd=(rsync -az --delete --exclude 'config/calibration/' "$stage/" "$target:nao-soccer/")
 # Runs on the robot (expanded there, hence the single quotes).
 # shellcheck disable=SC2016
 remote='set -e
