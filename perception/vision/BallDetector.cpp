@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <vector>
 
 #include "perception/vision/ColourTests.h"
 
@@ -22,9 +21,69 @@ double expectedBallRadius(const CameraMatrix& cm, const Eigen::Vector2d& pixel, 
 
 namespace {
 
+// Field here: the field's colour (FieldReference::isField), and clearly more saturated than
+// the white point -- at least half the field's own chroma at that luminance. The ball's
+// white, tinted green by the light the carpet throws onto it, is not field. Everything is
+// compared squared, and the hue range as a sector between two unit vectors: the verifier
+// asks this a few thousand times per image.
+class FieldTest {
+ public:
+  explicit FieldTest(const FieldReference& field) : field_(field) {
+    constexpr double kSlack = 0.08;  // FieldReference::isField's default
+    const double lo = field.hueMin - kSlack, hi = field.hueMax + kSlack;
+    sector_ = hi - lo < M_PI;
+    loU_ = std::cos(lo), loV_ = std::sin(lo), hiU_ = std::cos(hi), hiV_ = std::sin(hi);
+    const double minChroma = std::max(0.6 * field.satMin, 2.0);
+    minChroma2_ = minChroma * minChroma;
+    relSatPerY2_ = 0.25 * field.fieldRelSatPerY * field.fieldRelSatPerY;
+    satMin2_ = field.satMin * field.satMin;
+  }
+  bool operator()(const PixelColour& c) const {
+    if (!field_.valid) return false;
+    const double du = c.u - 128, dv = c.v - 128;
+    if (du * du + dv * dv < minChroma2_) return false;
+    const double ru = du - field_.whiteU * c.y, rv = dv - field_.whiteV * c.y;
+    if (ru * ru + rv * rv < std::min(relSatPerY2_ * c.y * c.y, satMin2_)) return false;
+    if (!sector_) return field_.isField(c);
+    return loU_ * dv - loV_ * du >= 0 && du * hiV_ - dv * hiU_ >= 0;
+  }
+  bool at(const CameraImage& img, const Eigen::Vector2d& p) const { return (*this)(sampleColour(img, p.x(), p.y())); }
+
+ private:
+  const FieldReference& field_;
+  bool sector_ = false;
+  double loU_ = 1, loV_ = 0, hiU_ = 1, hiV_ = 0, minChroma2_ = 0, relSatPerY2_ = 0, satMin2_ = 0;
+};
+
+// The luminance alone, bilinear like sampleColour.
+double sampleY(const CameraImage& img, double x, double y) {
+  const double fx = std::clamp(x - 0.5, 0.0, img.width - 1.001), fy = std::clamp(y - 0.5, 0.0, img.height - 1.001);
+  const int x0 = std::min(static_cast<int>(fx), img.width - 2), y0 = std::min(static_cast<int>(fy), img.height - 2);
+  const double ax = fx - x0, ay = fy - y0;
+  return (1 - ay) * ((1 - ax) * img.y(x0, y0) + ax * img.y(x0 + 1, y0)) +
+         ay * ((1 - ax) * img.y(x0, y0 + 1) + ax * img.y(x0 + 1, y0 + 1));
+}
+
+// Unit vectors at 2 pi (k + phase) / n, k = 0..n-1, computed once.
+template <int N, int PhaseTimes2>
+const std::array<Eigen::Vector2d, N>& directions() {
+  static const std::array<Eigen::Vector2d, N> dirs = [] {
+    std::array<Eigen::Vector2d, N> d;
+    for (int k = 0; k < N; ++k) {
+      const double a = 2 * M_PI * (k + 0.5 * PhaseTimes2) / N;
+      d[k] = Eigen::Vector2d(std::cos(a), std::sin(a));
+    }
+    return d;
+  }();
+  return dirs;
+}
+
+constexpr int kRays = 16;  // rays of the outline
+const auto& rayDirs() { return directions<kRays, 0>(); }
+
 struct Circle {
-  Eigen::Vector2d c;
-  double r;
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  double r = 0;
 };
 
 // Algebraic (Kasa) circle fit.
@@ -51,6 +110,17 @@ bool fitCircle(const std::vector<Eigen::Vector2d>& pts, Circle& out) {
   return true;
 }
 
+// The circle through three points (false when they are nearly collinear).
+bool circleThrough(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, Circle& out) {
+  const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
+  if (std::abs(d) < 1e-6) return false;
+  const double a2 = a.squaredNorm(), b2 = b.squaredNorm(), c2 = c.squaredNorm();
+  out.c = Eigen::Vector2d((a2 * (b.y() - c.y()) + b2 * (c.y() - a.y()) + c2 * (a.y() - b.y())) / d,
+                          (a2 * (c.x() - b.x()) + b2 * (a.x() - c.x()) + c2 * (b.x() - a.x())) / d);
+  out.r = (out.c - a).norm();
+  return true;
+}
+
 // The image direction of the world's up at a pixel (image -y for an upright camera).
 Eigen::Vector2d imageUp(const CameraMatrix& cm, const Eigen::Vector2d& pixel, double height) {
   if (const auto g = cm.pixelToGround(pixel, height)) {
@@ -63,42 +133,35 @@ Eigen::Vector2d imageUp(const CameraMatrix& cm, const Eigen::Vector2d& pixel, do
 
 struct Outline {
   std::vector<Eigen::Vector2d> edges;
-  std::vector<double> angles;
-  int offImage = 0;  // rays that left the image before reaching the field
+  int offImage = 0;  // rays that left the image first
 };
 
-// From `centre`, walks `rays` rays up to maxLen and records where the field starts (two field
-// samples in a row). Rays that leave the image or never reach the field are dropped.
-Outline castRays(const CameraImage& img, const FieldReference& field, const Eigen::Vector2d& centre, double maxLen,
-                 int rays) {
+// From `origin`, walks the rays up to maxLen and records where the field starts (more than a
+// speck of it), placed to the pixel by bisection. Rays that leave the image or never reach
+// the field are dropped.
+Outline castRays(const CameraImage& img, const FieldTest& onField, const Eigen::Vector2d& origin, double maxLen) {
   Outline o;
-  // Coarse steps (about a sixth of the expected radius), then bisection to the pixel.
-  const double step = std::max(1.0, maxLen / 15);
-  auto isField = [&](const Eigen::Vector2d& p) { return field.isField(sampleColour(img, p.x(), p.y())); };
-  for (int k = 0; k < rays; ++k) {
-    const double a = 2 * M_PI * k / rays;
-    const Eigen::Vector2d d(std::cos(a), std::sin(a));
+  const double step = std::max(1.0, maxLen / 15);  // about a sixth of the expected radius
+  for (const Eigen::Vector2d& d : rayDirs()) {
     double lastOff = 0;  // the last step not on the field
     for (double t = step; t <= maxLen; t += step) {
-      const Eigen::Vector2d p = centre + t * d;
+      const Eigen::Vector2d p = origin + t * d;
       if (!insideImage(img, p.x(), p.y(), 0.5)) {
         ++o.offImage;
         break;
       }
-      if (!isField(p)) {
+      if (!onField.at(img, p)) {
         lastOff = t;
         continue;
       }
-      // Field here: is it more than a speck (the next sample too, or half a step on)?
-      const Eigen::Vector2d q = centre + (t + std::max(1.0, 0.5 * step)) * d;
-      if (insideImage(img, q.x(), q.y(), 0.5) && !isField(q)) continue;
+      const Eigen::Vector2d q = origin + (t + std::max(1.0, 0.5 * step)) * d;
+      if (insideImage(img, q.x(), q.y(), 0.5) && !onField.at(img, q)) continue;
       double lo = lastOff, hi = t;
       while (hi - lo > 0.75) {
         const double mid = 0.5 * (lo + hi);
-        (isField(centre + mid * d) ? hi : lo) = mid;
+        (onField.at(img, origin + mid * d) ? hi : lo) = mid;
       }
-      o.edges.push_back(centre + 0.5 * (lo + hi) * d);
-      o.angles.push_back(a);
+      o.edges.push_back(origin + 0.5 * (lo + hi) * d);
       break;
     }
   }
@@ -108,33 +171,31 @@ Outline castRays(const CameraImage& img, const FieldReference& field, const Eige
 // The outline where the field is not beside the ball (a foot, a line, a shadow): along each
 // ray the outermost pixel as bright as the ball's white parts, provided darker pixels follow
 // (a ray running on into other white paint is dropped).
-Outline castBrightRays(const CameraImage& img, const Eigen::Vector2d& centre, double expectedR, int rays) {
+Outline castBrightRays(const CameraImage& img, const Eigen::Vector2d& origin, double expectedR) {
   Outline o;
-  // The ball's white level: bright samples near the centre.
+  // The ball's white level: bright samples near the origin.
   std::array<double, 48> ys{};
   int n = 0;
   for (double rr : {0.3, 0.6})
-    for (int k = 0; k < 24 && n < 48; ++k) {
-      const Eigen::Vector2d p = centre + rr * expectedR * Eigen::Vector2d(std::cos(k * M_PI / 12), std::sin(k * M_PI / 12));
-      if (insideImage(img, p.x(), p.y(), 0.5)) ys[n++] = sampleColour(img, p.x(), p.y()).y;
+    for (const Eigen::Vector2d& d : directions<24, 0>()) {
+      const Eigen::Vector2d p = origin + rr * expectedR * d;
+      if (insideImage(img, p.x(), p.y(), 0.5)) ys[n++] = sampleY(img, p.x(), p.y());
     }
   if (n < 12) return o;
-  std::sort(ys.begin(), ys.begin() + n);
+  std::nth_element(ys.begin(), ys.begin() + n * 8 / 10, ys.begin() + n);
   const double level = 0.75 * ys[n * 8 / 10];
   const double step = std::max(0.75, expectedR / 12);
-  for (int k = 0; k < rays; ++k) {
-    const double a = 2 * M_PI * k / rays;
-    const Eigen::Vector2d d(std::cos(a), std::sin(a));
+  for (const Eigen::Vector2d& d : rayDirs()) {
     double lastBright = -1;
     int darkAfter = 0;
     bool left = false;
     for (double t = 0.4 * expectedR; t <= 1.9 * expectedR; t += step) {
-      const Eigen::Vector2d p = centre + t * d;
+      const Eigen::Vector2d p = origin + t * d;
       if (!insideImage(img, p.x(), p.y(), 0.5)) {
         left = true;
         break;
       }
-      if (sampleColour(img, p.x(), p.y()).y >= level) {
+      if (sampleY(img, p.x(), p.y()) >= level) {
         lastBright = t;
         darkAfter = 0;
       } else if (lastBright > 0 && ++darkAfter * step > 0.3 * expectedR) {
@@ -146,43 +207,32 @@ Outline castBrightRays(const CameraImage& img, const Eigen::Vector2d& centre, do
       continue;
     }
     if (lastBright < 0 || darkAfter * step <= 0.3 * expectedR) continue;
-    o.edges.push_back(centre + (lastBright + 0.5 * step) * d);
-    o.angles.push_back(a);
+    o.edges.push_back(origin + (lastBright + 0.5 * step) * d);
   }
   return o;
-}
-
-// The circle through three points (false when they are nearly collinear).
-bool circleThrough(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, Circle& out) {
-  const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
-  if (std::abs(d) < 1e-6) return false;
-  const double a2 = a.squaredNorm(), b2 = b.squaredNorm(), c2 = c.squaredNorm();
-  out.c = Eigen::Vector2d((a2 * (b.y() - c.y()) + b2 * (c.y() - a.y()) + c2 * (a.y() - b.y())) / d,
-                          (a2 * (c.x() - b.x()) + b2 * (a.x() - c.x()) + c2 * (b.x() - a.x())) / d);
-  out.r = (out.c - a).norm();
-  return true;
 }
 
 // A circle through the outline that most outline points agree with (a ball touching a line
 // or lying in its shadow has outline points on those instead): circles through spread
 // triples of points, the one with most points near it (ties: the radius nearest the
-// expected one), refitted to those. The angular span of the agreeing points must be wide
-// enough to pin the circle down.
-bool robustFit(const Outline& o, Circle& c, int& inliers, double expectedR) {
+// expected one), refitted to those. The agreeing points must pin the circle down: no empty
+// gap of 220 deg or more on the part of the circle inside the image (a ball cut by the image
+// border shows only the arc inside).
+bool robustFit(const CameraImage& img, const Outline& o, Circle& c, int& inliers, double expectedR) {
   const int n = static_cast<int>(o.edges.size());
   if (n < 5) return false;
-  auto agreeing = [&](const Circle& h) {
-    int count = 0;
+  auto near = [](const Eigen::Vector2d& p, const Circle& h) {
     const double tol = std::max(1.5, 0.12 * h.r);
-    for (const auto& p : o.edges) count += std::abs((p - h.c).norm() - h.r) < tol;
-    return count;
+    const double d2 = (p - h.c).squaredNorm(), lo = std::max(0.0, h.r - tol), hi = h.r + tol;
+    return d2 > lo * lo && d2 < hi * hi;
   };
   Circle best{};
   int bestCount = 0;
   double bestDev = 1e9;
   auto consider = [&](const Circle& h) {
     if (!(h.r > 0.5 * expectedR && h.r < 2 * expectedR)) return;
-    const int count = agreeing(h);
+    int count = 0;
+    for (const auto& p : o.edges) count += near(p, h);
     const double dev = std::abs(h.r - expectedR);
     if (count > bestCount || (count == bestCount && dev < bestDev)) best = h, bestCount = count, bestDev = dev;
   };
@@ -195,21 +245,208 @@ bool robustFit(const Outline& o, Circle& c, int& inliers, double expectedR) {
     }
   if (bestCount < 5) return false;
   std::vector<Eigen::Vector2d> keep;
-  std::vector<double> angles;
-  const double tol = std::max(1.5, 0.12 * best.r);
   for (const auto& p : o.edges)
-    if (std::abs((p - best.c).norm() - best.r) < tol) {
-      keep.push_back(p);
-      angles.push_back(std::atan2(p.y() - best.c.y(), p.x() - best.c.x()));
-    }
+    if (near(p, best)) keep.push_back(p);
   c = best;
   if (keep.size() < 5 || !fitCircle(keep, c)) return false;
   inliers = static_cast<int>(keep.size());
-  // The largest empty angular gap must be < 220 deg (at least ~140 deg of outline seen).
+  std::vector<double> angles;
+  for (const auto& p : keep) angles.push_back(std::atan2(p.y() - c.c.y(), p.x() - c.c.x()));
   std::sort(angles.begin(), angles.end());
-  double gap = angles.front() + 2 * M_PI - angles.back();
-  for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+  auto seenArc = [&](double from, double to) {  // the part of (from, to) whose circle points are in the image
+    const int steps = std::max(1, static_cast<int>((to - from) / (5 * M_PI / 180)));
+    int in = 0;
+    for (int k = 0; k < steps; ++k) {
+      const double a = from + (k + 0.5) * (to - from) / steps;
+      const Eigen::Vector2d p = c.c + c.r * Eigen::Vector2d(std::cos(a), std::sin(a));
+      in += insideImage(img, p.x(), p.y());
+    }
+    return (to - from) * in / steps;
+  };
+  double gap = seenArc(angles.back(), angles.front() + 2 * M_PI);
+  for (std::size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, seenArc(angles[i - 1], angles[i]));
   return gap < 220 * M_PI / 180;
+}
+
+// Outline and circle from a seed inside the ball: rays to where the field starts, a robust
+// circle through them, once more from its centre (when that is in the image); where that
+// fails, the same with the outline of the bright parts. Most rays that stay in the image
+// must end on the circle.
+bool fitOutline(const CameraImage& img, const FieldTest& onField, const BallParams& params, BallCandidate& c,
+                Circle& circle, bool keepOutline) {
+  for (const bool bright : {false, true}) {
+    Circle fit{c.seed, c.expectedRadius};
+    int inliers = 0, offImage = 0;
+    bool ok = false;
+    Eigen::Vector2d origin = c.seed;
+    for (int pass = 0; pass < 2; ++pass) {
+      const Outline o = bright ? castBrightRays(img, origin, c.expectedRadius)
+                               : castRays(img, onField, origin, 2.4 * std::max(fit.r, c.expectedRadius));
+      if (keepOutline) c.outline = o.edges;
+      Circle h = fit;
+      int in = 0;
+      if (!robustFit(img, o, h, in, c.expectedRadius)) break;
+      ok = true, fit = h, inliers = in, offImage = o.offImage;
+      if (!insideImage(img, fit.c.x(), fit.c.y(), 1.0)) break;
+      origin = fit.c;
+    }
+    c.inliers = inliers, c.offImage = offImage;
+    if (ok && inliers >= params.minOutline * (kRays - offImage)) {
+      circle = fit;
+      c.byBrightOutline = bright;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Inside a circle: rings at fixed fractions of the radius (perRing samples each, alternate
+// rings staggered) and the centre; samples off the image are left out.
+struct Inside {
+  int n = 0;
+  double white = 0, dark = 0;  // the 90th and 10th percentiles of the luminance
+  double contrast = 0;         // (white - dark) / white
+  double darkRatio = 0;        // fraction below dark + 0.35 (white - dark)
+  double pattern = 0;          // RMS of the rings' luminance after their mean and first harmonic, / white
+  double fieldRatio = 0;       // field-coloured samples
+  double relSat = 0;           // mean chroma about the white point
+};
+
+template <int PerRing>
+Inside measureInside(const CameraImage& img, const FieldReference& field, const FieldTest& onField,
+                     const Circle& circle) {
+  Inside in;
+  constexpr double kRings[] = {0.2, 0.45, 0.65, 0.82};
+  std::array<double, 4 * PerRing + 1> ys{};
+  int fieldCount = 0;
+  double sat = 0, res2 = 0;
+  int resN = 0;
+  auto take = [&](const PixelColour& col) {
+    ys[in.n++] = col.y;
+    fieldCount += onField(col);
+    sat += field.relSat(col);
+  };
+  if (insideImage(img, circle.c.x(), circle.c.y(), 0.5)) take(sampleColour(img, circle.c.x(), circle.c.y()));
+  for (int ring = 0; ring < 4; ++ring) {
+    // The ring's samples, and a least-squares fit of y = a + b cos + c sin to them: smooth
+    // shading (a gradient across the ball, a highlight) is that; the black patches are not.
+    const auto& dirs = ring % 2 ? directions<PerRing, 1>() : directions<PerRing, 0>();
+    std::array<double, PerRing> y{};
+    std::array<int, PerRing> idx{};
+    int m = 0;
+    for (int k = 0; k < PerRing; ++k) {
+      const Eigen::Vector2d p = circle.c + kRings[ring] * circle.r * dirs[k];
+      if (!insideImage(img, p.x(), p.y(), 0.5)) continue;
+      const PixelColour col = sampleColour(img, p.x(), p.y());
+      take(col);
+      y[m] = col.y, idx[m] = k;
+      ++m;
+    }
+    if (ring == 0 || m < 8) continue;
+    Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d b = Eigen::Vector3d::Zero();
+    for (int k = 0; k < m; ++k) {
+      const Eigen::Vector3d row(1, dirs[idx[k]].x(), dirs[idx[k]].y());
+      a += row * row.transpose();
+      b += row * y[k];
+    }
+    const Eigen::Vector3d x = a.ldlt().solve(b);
+    for (int k = 0; k < m; ++k) {
+      const double e = y[k] - (x(0) + x(1) * dirs[idx[k]].x() + x(2) * dirs[idx[k]].y());
+      res2 += e * e;
+      ++resN;
+    }
+  }
+  if (in.n == 0) return in;
+  std::sort(ys.begin(), ys.begin() + in.n);
+  in.white = ys[in.n * 9 / 10];
+  in.dark = ys[in.n / 10];
+  in.contrast = (in.white - in.dark) / std::max(1.0, in.white);
+  const double split = in.dark + 0.35 * (in.white - in.dark);
+  in.darkRatio = static_cast<double>(std::lower_bound(ys.begin(), ys.begin() + in.n, split) - ys.begin()) / in.n;
+  in.pattern = resN ? std::sqrt(res2 / resN) / std::max(1.0, in.white) : 0;
+  in.fieldRatio = static_cast<double>(fieldCount) / in.n;
+  in.relSat = sat / in.n;
+  return in;
+}
+
+// A ring at 1.4 r: how much of it is field, and the field's chroma there.
+struct Around {
+  int n = 0, field = 0;
+  double relSat = 0;  // mean over the field samples
+};
+
+Around measureAround(const CameraImage& img, const FieldReference& field, const FieldTest& onField,
+                     const Circle& circle) {
+  Around ar;
+  for (const Eigen::Vector2d& d : directions<16, 0>()) {
+    const Eigen::Vector2d p = circle.c + 1.4 * circle.r * d;
+    if (!insideImage(img, p.x(), p.y(), 0.5)) continue;
+    const PixelColour col = sampleColour(img, p.x(), p.y());
+    ++ar.n;
+    if (onField(col)) ++ar.field, ar.relSat += field.relSat(col);
+  }
+  if (ar.field) ar.relSat /= ar.field;
+  return ar;
+}
+
+// The fraction of the directions (of those in the image) in which the circle is a real
+// border: the field starts just outside it, or the colour steps across it (from the ball's
+// white or black to something else). A surface that carries on across the circle -- the
+// rest of a robot's shoulder, a goal post above its foot -- does neither.
+double outlineSupport(const CameraImage& img, const FieldTest& onField, const Circle& circle, double white) {
+  const double step = std::max(0.12 * white, 8.0);
+  const double margin = std::max(1.0, 0.25 * circle.r);
+  const double rIn = std::max(0.5 * circle.r, circle.r - margin), rOut = circle.r + margin;
+  int looked = 0, border = 0;
+  for (const Eigen::Vector2d& d : directions<24, 0>()) {
+    const Eigen::Vector2d pin = circle.c + rIn * d, pout = circle.c + rOut * d;
+    if (!insideImage(img, pin.x(), pin.y(), 0.5) || !insideImage(img, pout.x(), pout.y(), 0.5)) continue;
+    ++looked;
+    const PixelColour out = sampleColour(img, pout.x(), pout.y());
+    if (onField(out)) {
+      ++border;
+      continue;
+    }
+    const PixelColour in = sampleColour(img, pin.x(), pin.y());
+    const double dy = out.y - in.y, du = out.u - in.u, dv = out.v - in.v;
+    border += dy * dy + du * du + dv * dv >= step * step;
+  }
+  return looked ? static_cast<double>(border) / looked : 0;
+}
+
+// A goal post (or a robot's leg) seen above its foot: a narrow upright object carries on
+// straight above the circle, about as wide as the ball (but wider than a line). A ball in front of a wall or a board
+// has wide background above it, or field.
+bool postAbove(const CameraImage& img, const FieldTest& onField, const CameraMatrix& cm, const Circle& circle,
+               double radiusM) {
+  const Eigen::Vector2d up = imageUp(cm, circle.c, radiusM), side(-up.y(), up.x());
+  const Eigen::Vector2d above = circle.c + 1.25 * circle.r * up;
+  if (!insideImage(img, above.x(), above.y(), 0.5) || onField.at(img, above)) return false;
+  int narrow = 0, looked = 0;
+  for (double k : {1.5, 2.0, 2.6, 3.2}) {
+    const Eigen::Vector2d q = circle.c + k * circle.r * up;
+    if (!insideImage(img, q.x(), q.y(), 0.5)) continue;
+    const PixelColour ref = sampleColour(img, q.x(), q.y());
+    ++looked;
+    if (onField(ref)) continue;
+    const double tol = 0.3 * ref.y + 10;
+    auto extent = [&](double dir) {
+      double t = 1;
+      for (; t <= 3 * circle.r; t += std::max(1.0, 0.25 * circle.r)) {
+        const Eigen::Vector2d p = q + dir * t * side;
+        if (!insideImage(img, p.x(), p.y(), 0.5)) return 1e9;  // unknown: treat as wide
+        const PixelColour col = sampleColour(img, p.x(), p.y());
+        if (std::abs(col.y - ref.y) > tol || onField(col)) break;
+      }
+      return t;
+    };
+    // As wide as a post (the ball's diameter), not as a field line running up the image
+    // from a ball lying on it (half that).
+    const double left = extent(1), right = extent(-1);
+    narrow += left < 1.6 * circle.r && right < 1.6 * circle.r && left + right >= 1.5 * circle.r;
+  }
+  return narrow >= 2 && 2 * narrow >= looked;
 }
 
 }  // namespace
@@ -219,10 +456,43 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
                        std::vector<BallCandidate>* debug) {
   BallPercept best;
   if (!field.valid) return best;
+  const FieldTest onField(field);
 
-  // 1. Candidates: runs of non-field regions as long as a ball there.
+  // 1. Candidates.
   std::vector<BallCandidate> cands;
-  auto consider = [&](const std::vector<ScanLine>& lines, bool vertical) {
+  auto pixelOn = [](const ScanLine& sl, bool vertical, double along) {
+    return vertical ? Eigen::Vector2d(sl.coord + 0.5, along) : Eigen::Vector2d(along, sl.coord + 0.5);
+  };
+  auto add = [&](const Eigen::Vector2d& seed, double r, bool vertical, int priority, bool fromPatch) {
+    for (const auto& c : cands)
+      if ((c.seed - seed).norm() < 0.7 * std::max(r, c.expectedRadius)) return;
+    BallCandidate c;
+    c.seed = seed;
+    c.expectedRadius = r;
+    c.priority = priority;
+    c.alongVertical = vertical;
+    c.fromPatch = fromPatch;
+    cands.push_back(c);
+  };
+  // A cheap look across a run: the non-field stretch through the seed at right angles to
+  // the scan line must be about as wide as a ball (not a line's edge, not a robot).
+  auto acrossFits = [&](const Eigen::Vector2d& seed, double r, const Eigen::Vector2d& dir) {
+    double width = 0;
+    const double step = std::max(1.0, 0.25 * r);
+    for (double sgn : {-1.0, 1.0}) {
+      double t = 0;
+      while (t < 2 * params.maxRadiusRatio * r + 2) {
+        const Eigen::Vector2d p = seed + sgn * (t + step) * dir;
+        if (!insideImage(image, p.x(), p.y(), 0.5)) break;  // cut by the border: keep what is seen
+        if (onField.at(image, p)) break;
+        t += step;
+      }
+      width += t;
+    }
+    return width >= 0.6 * r && width <= 2 * params.maxRadiusRatio * r + 3;
+  };
+  auto scan = [&](const std::vector<ScanLine>& lines, bool vertical) {
+    const Eigen::Vector2d acrossDir = vertical ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1);
     for (const ScanLine& sl : lines) {
       const auto& rs = sl.regions;
       for (std::size_t i = 0; i < rs.size();) {
@@ -232,107 +502,71 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
         }
         std::size_t j = i;
         bool bright = false, dark = false;
+        double brightest = 0;
         while (j < rs.size() && rs[j].cls != RegionClass::Field) {
-          bright = bright || field.isWhiteRegion(rs[j]) || rs[j].colour.y > field.yMax;
+          const bool b = field.isWhiteRegion(rs[j]) || rs[j].colour.y > field.yMax;
+          bright = bright || b;
+          if (b) brightest = std::max<double>(brightest, rs[j].colour.y);
           dark = dark || rs[j].colour.y < 0.8 * field.fieldY;
           ++j;
         }
-        const int from = rs[i].from, to = rs[j - 1].to;
+        const std::size_t first = i, last = j;  // the run is [first, last)
         i = j;
         if (!bright) continue;
-        // A run as long as a ball gives a candidate at its middle; a longer one (a ball
-        // touching a line or another white thing) one at each end; a much longer one none.
-        auto add = [&](double along) {
-          const Eigen::Vector2d seed =
-              vertical ? Eigen::Vector2d(sl.coord + 0.5, along) : Eigen::Vector2d(along, sl.coord + 0.5);
+        const int from = rs[first].from, to = rs[last - 1].to;
+        // Black patches: dark regions with a bright one next to them on this line (no longer
+        // than the ball: the patches and the shaded lower half may merge into one).
+        for (std::size_t k = first; k < last; ++k) {
+          if (rs[k].colour.y >= 0.5 * brightest) continue;
+          const bool brightBefore = k > first && rs[k - 1].colour.y >= 0.75 * brightest;
+          const bool brightAfter = k + 1 < last && rs[k + 1].colour.y >= 0.75 * brightest;
+          if (!brightBefore && !brightAfter) continue;
+          const Eigen::Vector2d seed = pixelOn(sl, vertical, 0.5 * (rs[k].from + rs[k].to));
           const double r = expectedBallRadius(cm, seed, params.radius);
-          if (r < 1.5) return;
-          for (const auto& c : cands)
-            if ((c.seed - seed).norm() < 0.7 * std::max(r, c.expectedRadius)) return;
-          BallCandidate c;
-          c.seed = seed;
-          c.expectedRadius = r;
-          c.priority = dark ? 0 : 1;
-          c.alongVertical = vertical;
-          cands.push_back(c);
-        };
+          if (r >= 1.5 && rs[k].to - rs[k].from <= 2 * r) add(seed, r, vertical, 0, true);
+        }
+        // The run as a whole: as long as a ball, a candidate at its middle; longer (a ball
+        // touching a line or another white thing), one at each end; much longer, none.
         const double len = to - from;
-        const double rMid = expectedBallRadius(cm, vertical ? Eigen::Vector2d(sl.coord + 0.5, 0.5 * (from + to))
-                                                            : Eigen::Vector2d(0.5 * (from + to), sl.coord + 0.5),
-                                               params.radius);
+        const double rMid = expectedBallRadius(cm, pixelOn(sl, vertical, 0.5 * (from + to)), params.radius);
         if (rMid < 1.5 || len < std::max(2.0, 0.4 * rMid)) continue;
+        auto addChecked = [&](double along) {
+          const Eigen::Vector2d seed = pixelOn(sl, vertical, along);
+          const double r = expectedBallRadius(cm, seed, params.radius);
+          // A run with a dark part (a black patch) may lie on a line that runs on across it.
+          if (r >= 1.5 && (dark || acrossFits(seed, r, acrossDir))) add(seed, r, vertical, dark ? 0 : 1, false);
+        };
         if (len <= 2 * params.maxRadiusRatio * rMid + 2) {
-          add(0.5 * (from + to));
+          addChecked(0.5 * (from + to));
         } else if (len <= 6 * rMid) {
-          add(from + rMid);
-          add(to - rMid);
+          addChecked(from + rMid);
+          addChecked(to - rMid);
         }
       }
     }
   };
-  consider(regions.vertical, true);
-  consider(regions.horizontal, false);
-  // A cheap look across the run: the non-field stretch through the seed at right angles to
-  // the scan line must be about as wide as a ball (not a line's edge, not a robot).
-  auto across = [&](const BallCandidate& c, const Eigen::Vector2d& dir) {
-    double width = 0;
-    for (double sgn : {-1.0, 1.0}) {
-      double t = 0;
-      const double step = std::max(1.0, 0.25 * c.expectedRadius);
-      while (t < 2 * params.maxRadiusRatio * c.expectedRadius + 2) {
-        const Eigen::Vector2d p = c.seed + sgn * (t + step) * dir;
-        if (!insideImage(image, p.x(), p.y(), 0.5)) break;  // cut by the border: keep what is seen
-        if (field.isField(sampleColour(image, p.x(), p.y()))) break;
-        t += step;
-      }
-      width += t;
-    }
-    return width;
-  };
-  std::vector<BallCandidate> kept;
-  for (BallCandidate& c : cands) {
-    const double w = across(c, c.alongVertical ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1));
-    if (w < 0.6 * c.expectedRadius || w > 2 * params.maxRadiusRatio * c.expectedRadius + 3) continue;
-    kept.push_back(c);
-  }
-  cands = std::move(kept);
-  // Runs with a dark part (the black patches) first; at most maxCandidates are verified.
+  scan(regions.vertical, true);
+  scan(regions.horizontal, false);
+  // Those with a black patch or a dark part first; at most maxCandidates are verified.
   std::stable_sort(cands.begin(), cands.end(),
                    [](const BallCandidate& a, const BallCandidate& b) { return a.priority < b.priority; });
   if (static_cast<int>(cands.size()) > params.maxCandidates) cands.resize(params.maxCandidates);
 
   // 2. Verification.
+  std::vector<Circle> measured;  // circles already measured (several seeds find the same ball)
   for (BallCandidate& c : cands) {
-    Circle circle{c.seed, c.expectedRadius};
-    int inliers = 0, offImage = 0;
-    bool ok = false;
-    for (int pass = 0; pass < 2; ++pass) {
-      const Outline o = castRays(image, field, circle.c, 2.4 * std::max(circle.r, c.expectedRadius), params.rays);
-      ok = robustFit(o, circle, inliers, c.expectedRadius);
-      offImage = o.offImage;
-      if (!ok) break;
+    bool duplicate = false;
+    for (const Circle& m : measured) duplicate = duplicate || (c.seed - m.c).norm() < 0.5 * m.r;
+    if (duplicate) {
+      c.rejectedBy = "duplicate";
+      continue;
     }
-    // Most rays that stay in the image must meet the field on the circle: round, and on the field.
-    bool fieldOutline = ok && inliers >= params.minOutline * (params.rays - offImage);
-    if (!fieldOutline) {
-      // Second chance where something else touches the ball: the outline of its bright parts.
-      circle = Circle{c.seed, c.expectedRadius};
-      ok = false;
-      for (int pass = 0; pass < 2; ++pass) {
-        const Outline o = castBrightRays(image, circle.c, c.expectedRadius, params.rays);
-        ok = robustFit(o, circle, inliers, c.expectedRadius);
-        offImage = o.offImage;
-        if (!ok) break;
-      }
-      if (!ok || inliers < params.minOutline * (params.rays - offImage)) {
-        c.rejectedBy = "outline";
-        c.inliers = inliers;
-        continue;
-      }
+    Circle circle;
+    if (!fitOutline(image, onField, params, c, circle, debug != nullptr)) {
+      c.rejectedBy = "outline";
+      continue;
     }
-    c.byBrightOutline = !fieldOutline;
     c.fitted = true;
-    c.inliers = inliers;
     c.centre = circle.c;
     c.radius = circle.r;
     const double expected = expectedBallRadius(cm, circle.c, params.radius);
@@ -340,101 +574,66 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
       c.rejectedBy = "size";
       continue;
     }
-    // Inside: a polar grid of samples within 0.8 r.
-    std::array<double, 64> ys{};
-    int n = 0, fieldInside = 0;
-    double satInside = 0;
-    for (double rr : {0.2, 0.45, 0.65, 0.8})
-      for (int k = 0; k < 16; ++k) {
-        const double a = 2 * M_PI * (k + 0.5 * (rr > 0.5)) / 16;
-        const Eigen::Vector2d p = circle.c + rr * circle.r * Eigen::Vector2d(std::cos(a), std::sin(a));
-        if (!insideImage(image, p.x(), p.y(), 0.5)) continue;
-        const PixelColour col = sampleColour(image, p.x(), p.y());
-        ys[n++] = col.y;
-        fieldInside += field.isField(col);
-        satInside += field.relSat(col);
-      }
-    if (n < 16) {
+    measured.push_back(circle);
+    // 16 samples a ring; where the image border cuts the ball, denser rings over what is left.
+    Inside in = measureInside<16>(image, field, onField, circle);
+    const double visible = in.n / (4.0 * 16 + 1);  // about the fraction of the disc in the image
+    if (in.n < 48) in = measureInside<48>(image, field, onField, circle);
+    if (in.n < 16) {
       c.rejectedBy = "inside off image";
       continue;
     }
-    std::sort(ys.begin(), ys.begin() + n);
-    const double bright = ys[n * 9 / 10], darkLevel = ys[n / 10];
-    const double contrast = (bright - darkLevel) / std::max(1.0, bright);
-    const double split = darkLevel + 0.35 * (bright - darkLevel);
-    int dark = 0;
-    for (int i = 0; i < n; ++i) dark += ys[i] < split;
-    // Around: a ring at 1.4 r.
-    int around = 0, fieldAround = 0;
-    double yAround = 0, satAround = 0;
-    for (int k = 0; k < 16; ++k) {
-      const double a = 2 * M_PI * k / 16;
-      const Eigen::Vector2d p = circle.c + 1.4 * circle.r * Eigen::Vector2d(std::cos(a), std::sin(a));
-      if (!insideImage(image, p.x(), p.y(), 0.5)) continue;
-      const PixelColour col = sampleColour(image, p.x(), p.y());
-      ++around;
-      if (field.isField(col)) ++fieldAround, yAround += col.y, satAround += field.relSat(col);
-    }
-    const double fieldInsideRatio = static_cast<double>(fieldInside) / n;
-    const double darkRatio = static_cast<double>(dark) / n;
-    c.contrast = contrast, c.darkRatio = darkRatio, c.fieldInside = fieldInsideRatio, c.bright = bright;
-    c.fieldAround = around ? static_cast<double>(fieldAround) / around : 0;
-    c.satInside = satInside / n;
-    if (fieldAround) c.yAround = yAround / fieldAround, c.satAround = satAround / fieldAround;
-    if (fieldInsideRatio > params.maxFieldInside) {
+    const Around ar = measureAround(image, field, onField, circle);
+    c.contrast = in.contrast, c.darkRatio = in.darkRatio, c.fieldInside = in.fieldRatio, c.bright = in.white;
+    c.pattern = in.pattern, c.satInside = in.relSat;
+    c.fieldAround = ar.n ? static_cast<double>(ar.field) / ar.n : 0;
+    c.satAround = ar.relSat;
+    if (in.fieldRatio > params.maxFieldInside) {
       c.rejectedBy = "field inside";
       continue;
     }
-    if (contrast < params.minContrast) {
+    if (in.contrast < params.minContrast) {
       c.rejectedBy = "contrast";
       continue;
     }
-    if (darkRatio < params.minDarkInside || darkRatio > params.maxDarkInside) {
+    if (in.darkRatio < params.minDarkInside || in.darkRatio > params.maxDarkInside) {
       c.rejectedBy = "pattern";
       continue;
     }
-    if (around == 0 || fieldAround < params.minFieldAround * around) {
+    if (ar.field == 0) {
       c.rejectedBy = "not on field";
       continue;
     }
-    yAround /= fieldAround;
-    satAround /= fieldAround;
     // Grey: far less saturated (from this image's white point) than the field beside it. Not
     // "brighter than the field": a ball seen from its shaded side is darker than sunlit grass.
-    if (satInside / n > params.maxGreyness * satAround) {
+    if (in.relSat > params.maxGreyness * ar.relSat) {
       c.rejectedBy = "colour";
       continue;
     }
-    // A goal post (or a robot's leg): a narrow upright object continues above the circle,
-    // about as wide as the ball. A ball in front of a wall or a board has wide background
-    // above it, or field.
-    const Eigen::Vector2d up = imageUp(cm, circle.c, params.radius), side(-up.y(), up.x());
-    int narrow = 0, looked = 0;
-    for (double k : {1.5, 2.0, 2.6, 3.2}) {
-      const Eigen::Vector2d q = circle.c + k * circle.r * up;
-      if (!insideImage(image, q.x(), q.y(), 0.5)) continue;
-      const PixelColour ref = sampleColour(image, q.x(), q.y());
-      ++looked;
-      if (field.isField(ref)) continue;
-      const double tol = 0.3 * ref.y + 10;
-      auto extent = [&](double dir) {
-        double t = 1;
-        for (; t <= 3 * circle.r; t += std::max(1.0, 0.25 * circle.r)) {
-          const Eigen::Vector2d p = q + dir * t * side;
-          if (!insideImage(image, p.x(), p.y(), 0.5)) return 1e9;  // unknown: treat as wide
-          const PixelColour col = sampleColour(image, p.x(), p.y());
-          if (std::abs(col.y - ref.y) > tol || field.isField(col)) break;
-        }
-        return t;
-      };
-      narrow += extent(1) < 1.6 * circle.r && extent(-1) < 1.6 * circle.r;
+    c.support = outlineSupport(image, onField, circle, in.white);
+    // A ball cut by the image border to less than the eval's three quarters shows only part
+    // of its pattern and outline: all of what is seen must be right.
+    const bool cut = visible < params.minVisible;
+    const bool outlineAll = c.inliers >= params.cutMinOutline * (kRays - c.offImage);
+    const bool patches = in.pattern >= params.minPattern;
+    const bool clear = patches && (cut ? in.contrast >= params.cutMinContrast && outlineAll &&
+                                             c.support >= params.cutMinSupport && c.fieldAround >= params.cutMinSupport
+                                       : in.contrast >= params.clearContrast &&
+                                             in.contrast + 0.5 * (c.support + c.fieldAround) >= params.clearEvidence);
+    const bool faint = visible >= 1 && c.offImage == 0 && in.pattern >= params.faintMinPattern &&
+                       in.darkRatio >= params.faintMinDark && in.darkRatio <= params.faintMaxDark &&
+                       c.support >= params.faintMinSupport && c.fieldAround >= params.faintMinAround &&
+                       circle.r >= params.faintMinRadiusPx;
+    if (!clear && !faint) {
+      c.rejectedBy = "evidence";
+      continue;
     }
-    if (narrow >= 2 && 2 * narrow >= looked) {
+    if (postAbove(image, onField, cm, circle, params.radius)) {
       c.rejectedBy = "post";
       continue;
     }
     c.accepted = true;
-    c.score = inliers / static_cast<double>(params.rays) + contrast + static_cast<double>(fieldAround) / around;
+    c.score = in.contrast + c.support + c.fieldAround;
     if (!best.seen || c.score > best.confidence) {
       const auto pos = cm.pixelToGround(circle.c, params.radius);
       if (!pos) continue;
@@ -456,12 +655,6 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
     }
   }
   if (best.seen) best.confidence = std::min(1.0, best.confidence / 3);
-  if (std::getenv("NAO_BALLSTAT") && best.seen)  // TEMP
-    for (const auto& c : cands)
-      if (c.accepted && c.centre == best.image)
-        std::fprintf(stderr, "BALLCAND r %.1f re %.1f con %.2f dark %.2f fin %.2f far %.2f bright %.0f yA %.0f sI %.1f sA %.1f inl %d\n",
-                     c.radius, c.expectedRadius, c.contrast, c.darkRatio, c.fieldInside, c.fieldAround, c.bright, c.yAround,
-                     c.satInside, c.satAround, c.inliers + 100 * c.byBrightOutline);
   if (debug) *debug = std::move(cands);
   return best;
 }
