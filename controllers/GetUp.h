@@ -5,6 +5,18 @@
 // feet, into the walk's stand posture. Between frames it checks the IMU: a squat that is not
 // upright enough when the rise should begin counts as a failed attempt (the engine lets the
 // robot relax and tries again). A robot lying on its side first rolls onto its back.
+//
+// Status (issue 4, measured in the simulator; tests/getup_test.cpp is 'pending'): neither
+// sequence gets the robot up yet -- every attempt fails the squat check and the robot lies down
+// to try again. From the front, the pike and the knees-in frames leave it kneeling on its shins,
+// torso pitched 105-110 deg, the COM ~15 cm ahead of the feet and the soles vertical: with the
+// knee at its 121 deg limit and the hip at -88 deg the soles cannot be put flat under the COM
+// by the legs alone. From the back, the bridge lifts the pelvis to ~0.2 m with the COM 6-7 cm
+// from the feet's centre, then the sit-up frame drops it: the upper body (torso, head, arms:
+// 2.95 kg) outweighs the legs (2.4 kg) about the hips, and the arms (2.15 Nm shoulder stall)
+// cannot push it forward over the feet. A cross-entropy search over these frames' angles and
+// timing (9 angles x 5 frames, 3 pushes each) improved the bridge but found no transition into
+// the squat; a different sequence (e.g. legs spread so the feet come beside the hips) is needed.
 #include <string>
 #include <vector>
 

@@ -58,11 +58,12 @@ void Kick::start(const SensorFrame& frame, const JointArray& stand, const Vector
   const double half = params_.footSpacing / 2;
   // The strike: the toe through the ball's centre and followThrough beyond, the foot turned by
   // what the approach left of the direction.
-  footYaw_ = std::clamp(direction, -params_.maxFootYaw, params_.maxFootYaw);
+  footYaw_ = std::clamp(direction + s * params_.yawBias, -params_.maxFootYaw, params_.maxFootYaw);
   const double reach = dims::kSoleFront + kBallRadius;
   const Vector2d contact = ballStart_ - reach * Vector2d(std::cos(footYaw_), std::sin(footYaw_));
   strikePoint_ = contact + params_.followThrough * Vector2d(std::cos(footYaw_), std::sin(footYaw_));
   strikePoint_.x() = std::clamp(strikePoint_.x(), 0.0, 0.13);
+  strikePoint_.y() -= s * params_.strikeInward;
   strikePoint_.y() = s * std::clamp(s * strikePoint_.y(), half - 0.03, half + 0.05);
 }
 

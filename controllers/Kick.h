@@ -14,6 +14,13 @@
 // Balance on one leg: the COM stays above the support sole (the kicking leg's motion is in the
 // COM model), gyro damping on the support ankle, and the support leg's sag is compensated
 // from the weight it carries (FSRs).
+//
+// Direction: measured over kicks in the simulator, the ball left ~8 deg inward of the foot's
+// path (the toe meets it slightly outside its centre line while the leg swings in), so the
+// foot aims yawBias outward and the strike path runs strikeInward towards the ball's centre.
+// Distance: the ball leaves at about the toe's speed (the simulated foot-ball contact is
+// critically damped, no rebound), and the toe reaches ~2 m/s with hip, knee and ankle at their
+// no-load speeds (6.4 rad/s); on the simulated carpet that rolls the ball ~2 m.
 #include <Eigen/Core>
 
 #include "controllers/MotionRequest.h"
@@ -44,6 +51,8 @@ class Kick {
     double strikePitch = 0.19;    // rad, at the end of the strike
     double ballGap = 0.028;       // m between the toe and the ball in the kick pose
     double maxFootYaw = 0.35;     // rad: the remaining direction error the foot corrects
+    double yawBias = 0.05;        // rad: the kicking foot aims this much outward of the direction
+    double strikeInward = 0.02;   // m: the strike path this much inward of the ball's centre line
     double gyroPitchGain = 0.1;   // rad per rad/s on the support ankle
     double gyroRollGain = 0.1;
     double servoGain = 60;        // N m / rad (sag compensation, see Walk)

@@ -111,7 +111,9 @@ void MotionEngine::applyHead(JointRequest& out, const HeadJointRequest& head) co
 // omnidirectionally and slowly, so that the last steps are small and it stops on the spot.
 Pose2 MotionEngine::walkToSpeed(const Pose2& target, double positionTolerance, double angleTolerance) {
   walkTarget_ = target;
-  const Pose2 rel = odometry_.pose.inverse() * walkTarget_;
+  // The remaining offset from where the robot would stand if it stopped now (the body's sway
+  // within a step would otherwise decide when the target counts as reached).
+  const Pose2 rel = walk_.standPoseEstimate().inverse() * walkTarget_;
   const double distance = std::hypot(rel.x, rel.y);
   const Params& p = params_;
   if (distance < positionTolerance && std::abs(rel.theta) < angleTolerance) walkToStopped_ = true;

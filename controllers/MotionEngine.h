@@ -57,6 +57,7 @@ class MotionEngine {
   const Odometry& odometry() const { return odometry_; }
   const Walk& walk() const { return walk_; }
   Walk& walk() { return walk_; }
+  GetUp& getUp() { return getUp_; }  // e.g. GetUp::setFrames for experiments
   const Params& params() const { return params_; }
 
  private:

@@ -54,6 +54,11 @@ double yawRateOf(const SensorFrame& frame) {
 
 Walk::Walk(const Params& params) : params_(params) {
   const JointArray stand = standPosture();
+  {
+    const Isometry3d l = torsoToSole(stand, BodySide::Left), r = torsoToSole(stand, BodySide::Right);
+    const Vector3d mid = (l.translation() + r.translation()) / 2;
+    standOffset_ = Pose2(-mid.x(), -mid.y(), 0);
+  }
   arms_ = stand;
   comHeight_ = params_.torsoHeight + centerOfMass(stand).z();
   omega_ = std::sqrt(kGravity / comHeight_);
@@ -312,20 +317,11 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
     }
     case Phase::Walking: {
       t_ += dt;
-      // Touch-down: on time, or early when the swing foot already carries the robot.
-      const double swingWeight = frame.fsr.total(!supportLeft_);
-      const double totalWeight = swingWeight + frame.fsr.total(supportLeft_);
-      const bool early = t_ >= params_.earlyTouchdownPhase * stepDuration_ && totalWeight > 0.5 &&
-                         swingWeight > params_.touchdownWeight * totalWeight;
-      if (t_ >= stepDuration_ - 1e-9 || early) {
-        const double s = std::clamp(t_ / stepDuration_, 0.0, 1.0);
-        Pose2 landed = swingTarget_;
-        if (s < 1) {
-          const double h = smooth5(s);
-          landed = {swingStart_.x + h * (swingTarget_.x - swingStart_.x), swingStart_.y + h * (swingTarget_.y - swingStart_.y),
-                    Pose2::wrap(swingStart_.theta + h * Pose2::wrap(swingTarget_.theta - swingStart_.theta))};
-        }
-        (supportLeft_ ? right_ : left_) = landed;
+      // Touch-down on time. (Ending a step early when the swing foot's FSRs already carry
+      // weight was tried and measured worse: the model's step timing then differs from the
+      // plan's, and on a randomised robot the next steps' adjustment ran into the reach limits.)
+      if (t_ >= stepDuration_ - 1e-9) {
+        (supportLeft_ ? right_ : left_) = swingTarget_;
         landedLeft_ = !supportLeft_;
         landCorrection_ = swingCorrection_;
         landTime_ = frame.time;
@@ -343,6 +339,7 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
         }
         startStep(frame.time);
       }
+      measureState(frame, dt);
       Pose2 nominal = nominalTarget(support_, !supportLeft_, speed_);
       nominal.theta = Pose2::wrap(nominal.theta + headingCorrection_);
       const StepZmp zmp = stepZmp(support_, supportLeft_, swingStart_, nominal);
@@ -391,6 +388,8 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
       break;
     }
   }
+
+  if (phase_ != Phase::Walking) measureState(frame, dt);  // no single support: no comparison
 
   // Tilt corrections. The swing sole is kept parallel to the ground (and its position relative
   // to the support sole right in the world) by undoing the torso's measured tilt beyond the
@@ -448,7 +447,31 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
   return out;
 }
 
-void Walk::measureState(const SensorFrame&) {}
+// The COM as the sensors see it: from the support sole through the measured joint angles, the
+// body tilted as the IMU says; in the plan frame, the support sole where the plan put it.
+// Its difference to the model's COM (and that difference's rate) is what the model does not
+// know: the body tipping about a sole edge, joints lagging, a foot landing elsewhere.
+void Walk::measureState(const SensorFrame& frame, double dt) {
+  if (phase_ != Phase::Walking) {
+    haveMeasurement_ = false;
+    comError_.setZero();
+    comErrorRate_.setZero();
+    return;
+  }
+  const bool left = supportLeft_;
+  const Eigen::Matrix3d tilt = torsoTilt(frame.inertial.angle.x(), frame.inertial.angle.y());
+  const Isometry3d sole = torsoToSole(frame.joints.position, left ? BodySide::Left : BodySide::Right);
+  const Vector3d d = tilt * (centerOfMass(frame.joints.position) - sole.translation());
+  const Vector3d soleX = tilt * sole.linear().col(0);
+  const double yaw = std::atan2(soleX.y(), soleX.x());
+  const Vector2d local = rotZ(-yaw).topLeftCorner<2, 2>() * d.head<2>();
+  const Vector2d error = (left ? left_ : right_) * local - c_;
+  if (haveMeasurement_ && measuredLeft_ == left && dt > 1e-6)
+    comErrorRate_ += 0.3 * ((error - comError_) / dt - comErrorRate_);
+  comError_ = error;
+  measuredLeft_ = left;
+  haveMeasurement_ = true;
+}
 
 void Walk::compensateSag(JointArray& joints, const Foot3& left, const Foot3& right, double leftShare) const {
   if (params_.sagCompensation <= 0) return;
@@ -504,6 +527,10 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
     odometry_.theta = Pose2::wrap(odometry_.theta + turn);
   }
   lastRelative_ = relative;
+  // The feet's centre in the robot frame (each sole's pose is the inverse of `relative`).
+  const Pose2 l = relative[0].inverse(), r = relative[1].inverse();
+  const Pose2 centre((l.x + r.x) / 2, (l.y + r.y) / 2, meanAngle(l.theta, r.theta));
+  standPoseEstimate_ = odometry_ * centre * standOffset_;
   haveRelative_ = !rotationOnly;
   const double fl = frame.fsr.total(true), fr = frame.fsr.total(false);
   if (fl + fr > 0.5) odometryLeftShare_ = fl / (fl + fr);

@@ -33,13 +33,15 @@ KickTrialResult runKick(const KickTrialOptions& o) {
   MotionRequest kick;
   kick.motion = MotionType::Kick;
   kick.kickId = 1;
-  bool wasDown = false;
+  bool wasDown = false, first = true;
   double restSince = -1;
   while (sim.time() - start < o.timeLimit + 15) {
     // The ball percept: its true position in the robot frame; the direction likewise.
     const Eigen::Vector3d pose = sim.truePose();
     kick.ballPosition = fieldToRobot(sim.world().ballPosition(0).head<2>(), pose);
     kick.kickDirection = Pose2::wrap(goal - pose.z());
+    if (first) r.leftFoot = kick.ballPosition.y() >= 0;  // the motion engine picks the foot likewise
+    first = false;
     const bool kicking = !r.kicked && sim.time() - start < o.timeLimit;
     if (!sim.cycle(kicking ? kick : stand)) throw Error("simulation", sim.stopReason());
     if (!r.kicked && sim.info().kickDone) {
@@ -60,7 +62,8 @@ KickTrialResult runKick(const KickTrialOptions& o) {
   }
   const Eigen::Vector2d moved = (sim.world().ballPosition(0) - ballStart).head<2>();
   r.travel = moved.norm();
-  r.directionError = r.travel > 0.05 ? std::abs(Pose2::wrap(std::atan2(moved.y(), moved.x()) - goal)) : M_PI;
+  r.directionErrorSigned = r.travel > 0.05 ? Pose2::wrap(std::atan2(moved.y(), moved.x()) - goal) : M_PI;
+  r.directionError = std::abs(r.directionErrorSigned);
   return r;
 }
 

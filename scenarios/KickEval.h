@@ -25,6 +25,8 @@ struct KickTrialResult {
   bool kicked = false;        // the engine reported the kick done
   double travel = 0;          // m, ball start to rest
   double directionError = 0;  // rad, |ball's direction - requested|
+  double directionErrorSigned = 0;  // rad, ball's direction - requested (counter-clockwise positive)
+  bool leftFoot = false;      // the ball lay left of the robot's heading when the kick was asked for
   double ballSpeed = 0;       // m/s, the fastest the ball went
   double time = 0;            // s until the kick was done
   int falls = 0;

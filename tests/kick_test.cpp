@@ -39,8 +39,8 @@ TEST(Kick, WalksToTheBallAndKicksItTheRequestedWay) {
                 r.time, r.travel, r.ballSpeed, r.directionError / kDeg, r.falls);
     EXPECT_TRUE(r.kicked);
     EXPECT_EQ(r.falls, 0);
-    EXPECT_GT(r.travel, 1.0);
-    EXPECT_LT(r.directionError, 15 * kDeg);
+    EXPECT_GT(r.travel, 1.5);
+    EXPECT_LT(r.directionError, 10 * kDeg);
   }
 }
 

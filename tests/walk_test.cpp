@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include "controllers/FallDetector.h"
 #include "controllers/HeadControl.h"
 #include "controllers/Kinematics.h"
 #include "controllers/RobotProgram.h"
@@ -65,14 +66,15 @@ TEST(Walk, WalksForwardBackwardSidewaysAndTurns) {
                         Case{"turn", {0, 0, 60 * kDeg}}}) {
     sim::WalkRunOptions o;
     o.speed = c.speed;
-    o.seconds = seconds(6);
+    o.seconds = quick() ? 4 : 6;  // the start's acceleration is in the mean: not shorter
     const sim::WalkRunResult r = sim::runWalk(o);
     std::printf("%s: forward %.0f mm/s, sideways %.0f mm/s, turn %.1f deg/s, odometry error %.1f%%, max tilt %.1f deg\n",
                 c.name, r.forwardSpeed * 1000, r.sidewaysSpeed * 1000, r.turnRate / kDeg, 100 * r.odometryErrorRatio,
                 r.maxTilt / kDeg);
     EXPECT_EQ(r.falls, 0) << c.name;
     EXPECT_LT(r.maxTilt, 15 * kDeg) << c.name;
-    // Speeds are measured over the whole time, the start's acceleration included.
+    // Speeds are measured over the whole time, the start's acceleration included (0.3 s of
+    // double support and about one step per 0.125 m/s of speed).
     if (c.speed.x > 0) {
       EXPECT_GT(r.forwardSpeed, 0.8 * c.speed.x) << c.name;
     } else if (c.speed.x < 0) {
@@ -103,6 +105,69 @@ TEST(Walk, RandomizedRobotWalksToo) {
   ASSERT_TRUE(r.variation.randomized);
   EXPECT_EQ(r.falls, 0);
   EXPECT_GT(r.distance, 0.5 * 0.25 * o.seconds);
+}
+
+// `eval walk` in small: the command changes every 2-5 s at random (fast combined speeds, stops,
+// reversals), on the nominal and on a randomised robot. No fall; odometry within 10%.
+TEST(Walk, RandomCommandSequencesWithoutFalls) {
+  for (bool randomize : {false, true}) {
+    sim::WalkEvalOptions o;
+    o.trials = quick() ? 1 : 2;
+    o.seconds = quick() ? 8 : 25;
+    o.seed = 11;
+    o.randomize = randomize;
+    const sim::WalkEvalResult r = sim::evalWalk(o);
+    for (const auto& t : r.trials)
+      std::printf("random commands%s: %.2f m, max tilt %.1f deg, odometry error %.1f%%\n", randomize ? " (randomised)" : "",
+                  t.distance, t.maxTilt / kDeg, 100 * t.odometryErrorRatio);
+    EXPECT_EQ(r.falls, 0) << (randomize ? "randomised" : "nominal");
+    EXPECT_LT(r.odometryErrorRatioMax, 0.1);
+    for (const auto& t : r.trials) EXPECT_GT(t.distance, 0.05 * o.seconds);  // it did walk
+  }
+}
+
+// The walk's model against the sensors: walking undisturbed, the COM measured through the
+// support leg's encoders and the IMU's tilt stays within a few cm of the model's COM (the
+// plan the footsteps are placed for); standing still the comparison is off. Stopped, the
+// odometry's robot frame is where the walk's stand-pose estimate (feet centre) said it would be.
+TEST(Walk, ModelAgreesWithTheSensors) {
+  sim::SceneSpec spec;
+  sim::World world(spec);
+  MotionEngine engine;
+  world.placeRobot(0, Eigen::Vector3d::Zero(), engine.walk().standPosture());
+  sim::SimBackend backend(world, 0);
+  FallDetector fall;
+  SensorFrame frame;
+  MotionRequest request;
+  double maxError = 0, sumError = 0;
+  int walking = 0;
+  const int stop = static_cast<int>((1.5 + seconds(5)) / kCycleTime);
+  for (int i = 0; i < stop + static_cast<int>(2.5 / kCycleTime); ++i) {
+    if (i == static_cast<int>(1.5 / kCycleTime)) {
+      request.motion = MotionType::Walk;
+      request.walkSpeed = Pose2(0.25, 0.05, 10 * kDeg);
+    }
+    if (i == stop) request = MotionRequest{};
+    ASSERT_TRUE(backend.waitForSensors(frame));
+    backend.sendRequest(engine.update(frame, fall.update(frame), request), LedRequest{});
+    const Walk::State st = engine.walk().state();
+    if (engine.walk().phase() == Walk::Phase::Walking) {
+      maxError = std::max(maxError, st.comError.norm());
+      sumError += st.comError.norm();
+      ++walking;
+    } else {
+      EXPECT_EQ(st.comError.norm(), 0.0);
+    }
+  }
+  ASSERT_GT(walking, 100);
+  std::printf("measured - model COM: mean %.1f mm, max %.1f mm\n", 1000 * sumError / walking, 1000 * maxError);
+  EXPECT_LT(maxError, 0.03);
+  EXPECT_GT(sumError / walking, 1e-4);  // a real measurement, not a copy of the model
+  ASSERT_TRUE(engine.walk().standing());
+  const Pose2 odo = engine.odometry().pose, est = engine.walk().standPoseEstimate();
+  EXPECT_GT(std::hypot(odo.x, odo.y), 0.3);
+  EXPECT_LT(std::hypot(odo.x - est.x, odo.y - est.y), 0.005);
+  EXPECT_LT(std::abs(Pose2::wrap(odo.theta - est.theta)), 1 * kDeg);
 }
 
 TEST(MotionEngine, WalksToATargetOnOdometry) {
