@@ -21,6 +21,7 @@
 
 #include "controllers/StandController.h"
 #include "perception/CameraModel.h"
+#include "support/StandingCamera.h"
 #include "perception/Geometry.h"
 #include "perception/vision/BallDetector.h"
 #include "perception/vision/VisionPipeline.h"
@@ -40,13 +41,7 @@ constexpr double kBallR = 0.05;
 // ---------------------------------------------------------------------------------------
 // Synthetic images.
 
-CameraMatrix standingCamera(double yawDeg, double pitchDeg, CameraId camera = CameraId::Top) {
-  JointArray joints = StandController::standPosture();
-  joints[HeadYaw] = yawDeg * kDeg;
-  joints[HeadPitch] = pitchDeg * kDeg;
-  return computeCameraMatrix(joints, Eigen::Vector2d::Zero(), camera, CameraCalibration{},
-                             CameraIntrinsics::nominal(camera));
-}
+using test::standingCamera;
 
 // A sphere lying in the scene (robot frame); its reflectance as a function of the surface
 // normal (robot frame).

@@ -7,7 +7,6 @@
 // result, the same result for the same seed, and bad options.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
@@ -24,6 +23,7 @@
 #include "perception/calibration/CalibrationStore.h"
 #include "robot/Paths.h"
 #include "scenarios/Calibrate.h"
+#include "support/RunCommand.h"
 
 namespace nao::sim {
 namespace {
@@ -79,22 +79,8 @@ TEST(CalibrationSim, LeftStart) {
 
 // ---- The command ----
 
-struct CommandResult {
-  int code = -1;
-  std::string out;  // stdout + stderr
-};
-
-CommandResult runCommand(const std::string& args) {
-  const std::string cmd = std::string(NAO_BINARY) + " " + args + " 2>&1";
-  CommandResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using test::CommandResult;
+using test::runCommand;
 
 nlohmann::json readJson(const std::string& path) {
   std::ifstream in(path);

@@ -5,26 +5,14 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
+
+#include "support/RunCommand.h"
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out;  // stdout + stderr
-};
+using Result = nao::test::CommandResult;
 
-Result run(const std::string& args) {
-  const std::string cmd = std::string(NAO_BINARY) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+Result run(const std::string& args) { return nao::test::runCommand(args); }
 
 std::string tempFile(const std::string& name, const std::string& content) {
   const std::string path = std::string(::testing::TempDir()) + name;

@@ -11,6 +11,7 @@
 
 #include "controllers/StandController.h"
 #include "perception/CameraModel.h"
+#include "support/StandingCamera.h"
 #include "perception/Geometry.h"
 #include "perception/vision/ColourTests.h"
 #include "perception/vision/GoalBoxDetector.h"
@@ -29,13 +30,7 @@ namespace {
 
 constexpr double kDeg = M_PI / 180;
 
-CameraMatrix standingCamera(double yawDeg, double pitchDeg, CameraId camera = CameraId::Top) {
-  JointArray joints = StandController::standPosture();
-  joints[HeadYaw] = yawDeg * kDeg;
-  joints[HeadPitch] = pitchDeg * kDeg;
-  return computeCameraMatrix(joints, Eigen::Vector2d::Zero(), camera, CameraCalibration{},
-                             CameraIntrinsics::nominal(camera));
-}
+using test::standingCamera;
 
 double segmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d d = b - a;

@@ -83,9 +83,12 @@ VisionResult runVision(const CameraImage& image, const CameraMatrix& cm, const V
   std::vector<char> onCircle;
   r.lines.circle = vision::detectCircle(candidates, image, field, r.obstacles, cm, circleParams, &onCircle);
   clock.stage("circle");
+  // Debugging aid (NAO_LINEDEBUG=1): why each line candidate was dropped. Read once, not per frame.
+  static const bool lineDebug = std::getenv("NAO_LINEDEBUG") != nullptr;
   std::vector<vision::RejectedLine> rejected;
-  r.lines.lines = vision::fitLines(candidates, onCircle, image, field, r.obstacles, cm, lineParams, &rejected);
-  if (std::getenv("NAO_LINEDEBUG"))  // debugging aid: why each line candidate was dropped
+  r.lines.lines =
+      vision::fitLines(candidates, onCircle, image, field, r.obstacles, cm, lineParams, lineDebug ? &rejected : nullptr);
+  if (lineDebug)
     for (const auto& x : rejected)
       std::fprintf(stderr, "REJECT (%.0f,%.0f)-(%.0f,%.0f) spots %d %s %.3f\n", x.imageFrom.x(), x.imageFrom.y(),
                    x.imageTo.x(), x.imageTo.y(), x.spots, x.reason, x.value);
