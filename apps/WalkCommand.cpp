@@ -79,6 +79,8 @@ int walkCommand(const Argv& argv) {
                                         {"time_s", r.time},
                                         {"position_error_m", r.positionError},
                                         {"angle_error_deg", r.angleError / kDeg},
+                                        {"odometry_position_error_m", r.odometryPositionError},
+                                        {"odometry_angle_error_deg", r.odometryAngleError / kDeg},
                                         {"falls", r.falls},
                                         {"variation", variationJson(r.variation)},
                                         {"seed", o.seed}});
@@ -148,6 +150,10 @@ int evalWalkToCommand(const Args& args) {
                    {"time_s", t.time},
                    {"position_error_m", t.positionError},
                    {"angle_error_deg", t.angleError / kDeg},
+                   {"odometry_position_error_m", t.odometryPositionError},
+                   {"odometry_angle_error_deg", t.odometryAngleError / kDeg},
+                   {"control_position_error_m", t.controlPositionError},
+                   {"control_angle_error_deg", t.controlAngleError / kDeg},
                    {"falls", t.falls},
                    {"variation", variationJson(t.variation)}});
   writeJson(args.str("json", "-"), {{"trials", trials},
@@ -157,6 +163,8 @@ int evalWalkToCommand(const Args& args) {
                                     {"position_error_max_m", r.positionErrorMax},
                                     {"angle_error_median_deg", r.angleErrorMedian / kDeg},
                                     {"angle_error_max_deg", r.angleErrorMax / kDeg},
+                                    {"odometry_position_error_median_m", r.odometryPositionErrorMedian},
+                                    {"odometry_position_error_max_m", r.odometryPositionErrorMax},
                                     {"randomized", randomize},
                                     {"seed", args.seed()},
                                     {"per_trial", per}});

@@ -16,16 +16,16 @@ const char* fallDirectionName(FallDirection d) {
   return "none";
 }
 
-namespace {
-
 // The torso orientation is Ry(pitch) Rx(roll): pitch > 0 leans forward, roll > 0 lifts the
-// left side, i.e. leans to the right.
-FallDirection directionOf(double roll, double pitch) {
-  if (std::abs(pitch) >= std::abs(roll)) return pitch > 0 ? FallDirection::Front : FallDirection::Back;
-  return roll > 0 ? FallDirection::Right : FallDirection::Left;
+// left side, i.e. leans to the right. Which way the robot lies follows from which torso axis
+// points down most: x (front, back) or y (sides). Beyond 90 deg of tilt the two angles alone
+// mislead (lying on the face with the hips up reads as a roll of ~180 deg), the axes do not.
+FallDirection lyingDirection(double roll, double pitch) {
+  const double xUp = -std::sin(pitch);                 // the torso x axis' upward component
+  const double yUp = std::sin(roll) * std::cos(pitch);  // the torso y axis' upward component
+  if (std::abs(xUp) >= std::abs(yUp)) return xUp < 0 ? FallDirection::Front : FallDirection::Back;
+  return yUp > 0 ? FallDirection::Right : FallDirection::Left;
 }
-
-}  // namespace
 
 const FallState& FallDetector::update(const SensorFrame& frame) {
   const double roll = frame.inertial.angle.x(), pitch = frame.inertial.angle.y();
@@ -49,11 +49,11 @@ const FallState& FallDetector::update(const SensorFrame& frame) {
     state_.fallen = true;
     state_.falling = false;
     state_.fallTime = frame.time;
-    state_.direction = directionOf(roll, pitch);
+    state_.direction = lyingDirection(roll, pitch);
     uprightSince_ = -1;
   } else {
     state_.falling = tilt > params_.fallingAngle && tipping > params_.fallingRate;
-    state_.direction = state_.falling ? directionOf(roll, pitch) : FallDirection::None;
+    state_.direction = state_.falling ? lyingDirection(roll, pitch) : FallDirection::None;
   }
   return state_;
 }

@@ -9,6 +9,9 @@ namespace nao {
 
 enum class FallDirection { None, Front, Back, Left, Right };
 const char* fallDirectionName(FallDirection d);
+// Which way a torso at this IMU roll and pitch (Ry(pitch) Rx(roll), rad) leans or lies: the
+// torso axis (x: front/back, y: sides) that points down most.
+FallDirection lyingDirection(double roll, double pitch);
 
 struct FallState {
   bool falling = false;  // tipping over, not yet down

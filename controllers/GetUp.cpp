@@ -20,6 +20,20 @@ double smoothstep(double t) {
   return t * t * (3 - 2 * t);
 }
 
+double tiltOf(const SensorFrame& frame) {
+  return std::acos(std::clamp(std::cos(frame.inertial.angle.x()) * std::cos(frame.inertial.angle.y()), -1.0, 1.0));
+}
+
+// The torso's forward lean (rad) in its sagittal plane: 0 upright, pi/2 lying on the face,
+// beyond that head down (hips up); -pi/2 lying on the back. The IMU's pitch alone folds back
+// beyond 90 deg (the roll then reads ~180 deg).
+double forwardLean(const SensorFrame& frame) {
+  const double roll = frame.inertial.angle.x(), pitch = frame.inertial.angle.y();
+  double lean = std::atan2(std::cos(roll) * std::sin(pitch), std::cos(roll) * std::cos(pitch));
+  if (lean < -M_PI / 2 - 0.3) lean += 2 * M_PI;
+  return lean;
+}
+
 // A symmetric frame from the angles (deg) that matter; left values, the right side mirrored.
 struct Pose {
   double headPitch = 0;
@@ -27,11 +41,7 @@ struct Pose {
   double hipYawPitch = 0, hipRoll = 0, hipPitch = 0, knee = 0, anklePitch = 0, ankleRoll = 0;
 };
 
-GetUp::KeyFrame frame(double duration, double stiffness, const Pose& p) {
-  GetUp::KeyFrame k;
-  k.duration = duration;
-  k.stiffness = stiffness;
-  JointArray& j = k.angles;
+void setArms(JointArray& j, const Pose& p) {
   j[HeadYaw] = 0;
   j[HeadPitch] = p.headPitch * kDeg;
   j[LShoulderPitch] = j[RShoulderPitch] = p.shoulderPitch * kDeg;
@@ -43,6 +53,18 @@ GetUp::KeyFrame frame(double duration, double stiffness, const Pose& p) {
   j[RElbowRoll] = -p.elbowRoll * kDeg;
   j[LWristYaw] = p.wristYaw * kDeg;
   j[RWristYaw] = -p.wristYaw * kDeg;
+}
+
+void clampAll(JointArray& j) {
+  for (int i = 0; i < NumJoints; ++i) j[i] = clampToLimits(static_cast<Joint>(i), j[i]);
+}
+
+GetUp::KeyFrame frame(double duration, double stiffness, const Pose& p) {
+  GetUp::KeyFrame k;
+  k.duration = duration;
+  k.stiffness = stiffness;
+  JointArray& j = k.angles;
+  setArms(j, p);
   j[LHipYawPitch] = p.hipYawPitch * kDeg;
   j[LHipRoll] = p.hipRoll * kDeg;
   j[RHipRoll] = -p.hipRoll * kDeg;
@@ -51,69 +73,139 @@ GetUp::KeyFrame frame(double duration, double stiffness, const Pose& p) {
   j[LAnklePitch] = j[RAnklePitch] = p.anklePitch * kDeg;
   j[LAnkleRoll] = p.ankleRoll * kDeg;
   j[RAnkleRoll] = -p.ankleRoll * kDeg;
-  for (int i = 0; i < NumJoints; ++i) j[i] = clampToLimits(static_cast<Joint>(i), j[i]);
+  clampAll(j);
   return k;
 }
 
-Pose squat() {
-  Pose p;
-  p.hipPitch = -88;
-  p.knee = 120;
-  p.anklePitch = -46;
-  p.shoulderPitch = 70;
-  return p;
+// The squat's legs with these arms.
+GetUp::KeyFrame squatFrame(const GetUp::Squat& squat, double duration, const Pose& arms) {
+  GetUp::KeyFrame k;
+  k.duration = duration;
+  k.angles = GetUp::squatPosture(squat);
+  setArms(k.angles, arms);
+  clampAll(k.angles);
+  return k;
 }
 
 }  // namespace
 
-JointArray GetUp::squatPosture() { return frame(1, 1, squat()).angles; }
-
-double GetUp::squatHeight() {
-  const Eigen::Isometry3d sole = torsoToSole(squatPosture(), BodySide::Left);
-  return (sole.linear().transpose() * -sole.translation()).z();
+void GetUp::risePosture(const Params& p, const Squat& q, double s, JointArray& joints) {
+  const double pitch = (1 - s) * q.pitch;
+  const double height = q.height + s * (p.torsoHeight - q.height);
+  const double width = q.width + s * (p.footSpacing / 2 - q.width);
+  const double yaw = (1 - s) * q.yaw;
+  const double comX = (1 - s) * q.comX + s * 0.005;
+  Eigen::Isometry3d l = Eigen::Isometry3d::Identity(), r = Eigen::Isometry3d::Identity();
+  l.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  r.linear() = Eigen::AngleAxisd(-yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  l.translation() = Eigen::Vector3d(0, width, 0);
+  r.translation() = Eigen::Vector3d(0, -width, 0);
+  comIK(l, r, Eigen::Vector2d(comX, 0), height, pitch, 0, joints);
 }
 
-double GetUp::squatTorsoPitch() {
-  const Eigen::Matrix3d r = torsoToSole(squatPosture(), BodySide::Left).linear().transpose();
-  return std::atan2(-r(2, 0), r(2, 2));
+JointArray GetUp::squatPosture(const Squat& squat) {
+  JointArray j{};
+  setArms(j, Pose{});
+  risePosture(Params{}, squat, 0, j);
+  clampAll(j);
+  return j;
 }
 
-std::vector<GetUp::KeyFrame> GetUp::frontFrames() {
-  Pose a;  // arms forward above the head, head up, legs straight
-  a.headPitch = -30;
-  a.shoulderPitch = -60;
-  a.shoulderRoll = 30;
-  a.elbowRoll = -40;
-  Pose b = a;  // pike: hips up on straight legs
-  b.hipPitch = -88;
-  b.anklePitch = 40;
-  Pose c = b;  // arms push the chest up
-  c.shoulderPitch = 20;
-  c.elbowRoll = -5;
-  Pose d = c;  // knees in: feet under the hips
-  d.knee = 120;
-  d.anklePitch = -50;
-  Pose e = squat();
-  return {frame(0.5, 1, a), frame(0.8, 1, b), frame(0.6, 1, c), frame(0.8, 1, d), frame(0.8, 1, e)};
+std::vector<GetUp::KeyFrame> GetUp::frontFrames(const Params& params) {
+  // A settling frame (the robot comes to rest in a known pose whatever the fall left), then
+  // four frames found by a cross-entropy search in the simulator (see GetUp.h): arms under
+  // the chest, knees up, legs turned in and spread (HipYawPitch), hands and feet on the
+  // floor; then the squat. Angles in deg, left side (the right mirrored).
+  std::vector<KeyFrame> frames;
+  Pose settle;  // knees bent, arms forward on the floor: a known start
+  settle.headPitch = -20;
+  settle.shoulderPitch = 5;
+  settle.elbowRoll = -35;
+  settle.hipPitch = -35;
+  settle.knee = 70;
+  frames.push_back(frame(0.7, 1, settle));
+  {
+    Pose p;
+    p.headPitch = -20;
+    p.shoulderPitch = 10.0;
+    p.elbowRoll = -104.3;
+    p.hipYawPitch = 0.3;
+    p.hipRoll = -21.1;
+    p.hipPitch = -3.1;
+    p.knee = 26.2;
+    p.anklePitch = 14.4;
+    frames.push_back(frame(1.39, 1, p));
+  }
+  {
+    Pose p;
+    p.headPitch = -20;
+    p.shoulderPitch = 21.7;
+    p.elbowRoll = -17.6;
+    p.hipYawPitch = 13.5;
+    p.hipRoll = -33.7;
+    p.hipPitch = 16.8;
+    p.knee = 95.7;
+    p.anklePitch = 28.3;
+    frames.push_back(frame(0.47, 1, p));
+  }
+  {
+    Pose p;
+    p.headPitch = -20;
+    p.shoulderPitch = 3.3;
+    p.elbowRoll = -106.8;
+    p.hipYawPitch = -59.2;
+    p.hipRoll = 20.4;
+    p.hipPitch = -126.5;
+    p.knee = 121.7;
+    p.anklePitch = -3.4;
+    frames.push_back(frame(0.78, 1, p));
+  }
+  {
+    Pose p;
+    p.headPitch = -20;
+    p.shoulderPitch = 29.3;
+    p.elbowRoll = -5.7;
+    p.hipYawPitch = -76.7;
+    p.hipRoll = 18.0;
+    p.hipPitch = -102.8;
+    p.knee = 64.6;
+    p.anklePitch = 10.1;
+    frames.push_back(frame(0.57, 1, p));
+  }
+  Pose arms;
+  arms.headPitch = -20;
+  arms.shoulderPitch = 26.0;
+  arms.elbowRoll = 13.8;
+  KeyFrame squat = squatFrame(params.frontSquat, 0.20, arms);
+  frames.push_back(squat);
+  return frames;
 }
 
-std::vector<GetUp::KeyFrame> GetUp::backFrames() {
-  Pose a;  // knees up, feet planted, arms back under the body
-  a.headPitch = 20;
-  a.shoulderPitch = 120;
-  a.elbowYaw = 20;
-  a.elbowRoll = -85;
-  a.wristYaw = -90;
-  a.knee = 90;
-  Pose b = a;  // bridge
-  b.hipPitch = 30;
-  Pose c = b;  // arms straight: the torso is lifted
-  c.elbowRoll = -5;
-  Pose d = c;  // sit up
-  d.hipPitch = -60;
-  d.knee = 60;
-  Pose e = squat();
-  return {frame(0.5, 1, a), frame(0.6, 1, b), frame(0.6, 1, c), frame(0.8, 1, d), frame(0.8, 1, e)};
+
+std::vector<GetUp::KeyFrame> GetUp::backFrames(const Params& params) {
+  (void)params;
+  // Onto the front (found by a cross-entropy search, see GetUp.h): the left leg and arm swing
+  // across the body while the right arm reaches over the head. Angles in deg, clamped to the
+  // joint limits; rolls the robot onto its side, not yet reliably onto its front.
+  std::vector<KeyFrame> frames;
+  const auto add = [&frames](double duration, std::initializer_list<std::pair<Joint, double>> angles) {
+    KeyFrame k = frame(duration, 1, Pose{});
+    for (const auto& [joint, deg] : angles) k.angles[joint] = clampToLimits(joint, deg * kDeg);
+    frames.push_back(k);
+  };
+  add(0.23, {
+      {LShoulderPitch, 13.0}, {LShoulderRoll, -26.3}, {LElbowRoll, -57.4}, {RShoulderPitch, -88.9},
+      {RShoulderRoll, -105.5}, {RElbowRoll, 21.8}, {LHipYawPitch, -9.2}, {LHipRoll, -25.9}, {RHipRoll, 45.8},
+      {LHipPitch, -61.8}, {RHipPitch, -140.3}, {LKneePitch, 90.7}, {RKneePitch, 4.4}});
+  add(0.51, {
+      {LShoulderPitch, -18.7}, {LShoulderRoll, -8.9}, {LElbowRoll, -73.6}, {RShoulderPitch, -96.5},
+      {RShoulderRoll, -83.6}, {RElbowRoll, 9.4}, {LHipYawPitch, -32.0}, {LHipRoll, -45.9}, {RHipRoll, -125.3},
+      {LHipPitch, -74.3}, {RHipPitch, 25.9}, {LKneePitch, 53.7}, {RKneePitch, 77.7}});
+  add(0.45, {
+      {LShoulderPitch, -4.6}, {LShoulderRoll, -2.9}, {LElbowRoll, -22.1}, {RShoulderPitch, -58.9},
+      {RShoulderRoll, -24.0}, {RElbowRoll, 17.5}, {LHipYawPitch, -24.0}, {LHipRoll, -13.7}, {RHipRoll, -70.0},
+      {LHipPitch, -30.7}, {RHipPitch, 32.5}, {LKneePitch, 22.7}, {RKneePitch, 35.7}});
+  return frames;
 }
 
 std::vector<GetUp::KeyFrame> GetUp::sideRollFrames(bool lyingOnLeft) {
@@ -135,30 +227,48 @@ std::vector<GetUp::KeyFrame> GetUp::sideRollFrames(bool lyingOnLeft) {
 }
 
 void GetUp::setFrames(FallDirection lying, const std::vector<KeyFrame>& frames) {
-  (lying == FallDirection::Back ? customBack_ : customFront_) = frames;
+  (lying == FallDirection::Back ? params_.back : params_.front) = frames;
 }
 
-void GetUp::startFrames(const SensorFrame& frame, const std::vector<KeyFrame>& frames) {
+std::vector<GetUp::KeyFrame> GetUp::framesFor(bool back) const {
+  if (back) return params_.back.empty() ? backFrames(params_) : params_.back;
+  return params_.front.empty() ? frontFrames(params_) : params_.front;
+}
+
+void GetUp::startFrames(const SensorFrame& frame, const std::vector<KeyFrame>& frames, bool back) {
+  squat_ = back ? params_.backSquat : params_.frontSquat;
   frames_ = frames;
   frame_ = 0;
   frameStart_ = frame.time;
   from_ = frame.joints.position;
+  phase_ = Phase::Frames;
+}
+
+const char* GetUp::phase() const {
+  if (failed_) return "failed";
+  if (done_) return "done";
+  switch (phase_) {
+    case Phase::Frames: return "frames";
+    case Phase::Rise: return "rise";
+    case Phase::Settle: return "settle";
+  }
+  return "?";
 }
 
 void GetUp::start(const SensorFrame& frame, FallDirection lying, const JointArray& stand) {
+  // The side the robot lies on now, from the IMU: the fall detector's direction dates from the
+  // fall, and a failed attempt may have rolled the robot since.
+  if (tiltOf(frame) > 0.8) lying = lyingDirection(frame.inertial.angle.x(), frame.inertial.angle.y());
   stand_ = stand;
   done_ = false;
   failed_ = false;
-  rising_ = false;
   gyro_.setZero();
-  rollingFirst_ = lying == FallDirection::Left || lying == FallDirection::Right;
-  if (rollingFirst_) {
-    startFrames(frame, sideRollFrames(lying == FallDirection::Left));
-  } else if (lying == FallDirection::Back) {
-    startFrames(frame, customBack_.empty() ? backFrames() : customBack_);
-  } else {
-    startFrames(frame, customFront_.empty() ? frontFrames() : customFront_);
-  }
+  rollingFirst_ = lying == FallDirection::Left || lying == FallDirection::Right ||
+                  (lying == FallDirection::Back && params_.backRollsOver);
+  sequences_ = 0;
+  if (lying == FallDirection::Left || lying == FallDirection::Right)
+    startFrames(frame, sideRollFrames(lying == FallDirection::Left), true);
+  else startFrames(frame, framesFor(lying == FallDirection::Back), lying == FallDirection::Back);
 }
 
 JointRequest GetUp::update(const SensorFrame& frame) {
@@ -168,54 +278,74 @@ JointRequest GetUp::update(const SensorFrame& frame) {
     out.position = frame.joints.position;
     return out;
   }
-  if (!rising_) {
+  const double pitch = frame.inertial.angle.y();
+  if (phase_ == Phase::Frames) {
     const KeyFrame& k = frames_[frame_];
-    const double s = smoothstep((frame.time - frameStart_) / k.duration);
+    const double t = frame.time - frameStart_;
+    const double s = smoothstep(t / k.duration);
     for (int j = 0; j < NumJoints; ++j) out.position[j] = from_[j] + s * (k.angles[j] - from_[j]);
     out.stiffness.fill(k.stiffness);
-    if (frame.time - frameStart_ >= k.duration) {
-      from_ = k.angles;
-      frameStart_ = frame.time;
-      if (++frame_ >= frames_.size()) {
-        if (rollingFirst_) {
-          // On the back now (or on the front: the IMU says which); the real get-up follows.
-          rollingFirst_ = false;
-          const bool back = frame.inertial.angle.y() < 0;
-          startFrames(frame, back ? (customBack_.empty() ? backFrames() : customBack_)
-                                  : (customFront_.empty() ? frontFrames() : customFront_));
-          return out;
-        }
-        // In the squat: upright enough to rise?
-        const double tilt = std::acos(std::clamp(std::cos(frame.inertial.angle.x()) * std::cos(frame.inertial.angle.y()), -1.0, 1.0));
-        if (tilt > params_.squatMaxTilt + std::abs(squatTorsoPitch())) {
-          failed_ = true;
-          return out;
-        }
-        rising_ = true;
-        riseStart_ = frame.time;
-        riseFrom_ = out.position;
-      }
+    if (t < k.duration) return out;
+    const double lean = forwardLean(frame);
+    if (lean < k.pitchMin || lean > k.pitchMax) {
+      if (t > k.duration + k.maxWait) failed_ = true;
+      return out;
     }
+    from_ = k.angles;
+    frameStart_ = frame.time;
+    if (++frame_ < frames_.size()) return out;
+    if (rollingFirst_) {
+      // A roll has ended (from the side onto the back, from the back onto the front); the
+      // sequence for the side the IMU says follows -- a few times at most.
+      if (++sequences_ > 4) {
+        failed_ = true;
+        return out;
+      }
+      const FallDirection lying = lyingDirection(frame.inertial.angle.x(), pitch);
+      if (lying == FallDirection::Left || lying == FallDirection::Right) {
+        startFrames(frame, sideRollFrames(lying == FallDirection::Left), true);
+      } else {
+        rollingFirst_ = lying == FallDirection::Back && params_.backRollsOver;
+        startFrames(frame, framesFor(lying == FallDirection::Back), lying == FallDirection::Back);
+      }
+      return out;
+    }
+    phase_ = Phase::Rise;
+    phaseStart_ = frame.time;
+    riseFrom_ = k.angles;
     return out;
   }
-  // Rising: feet flat, the COM above their midpoint, the torso from the squat's height and
-  // pitch to the stand's.
-  const double s = smoothstep((frame.time - riseStart_) / params_.riseTime);
-  const JointArray squatJ = riseFrom_;
-  const double h0 = squatHeight(), p0 = squatTorsoPitch();
-  out.position = stand_;
-  Eigen::Isometry3d l = Eigen::Isometry3d::Identity(), r = Eigen::Isometry3d::Identity();
-  l.translation() = Eigen::Vector3d(0, params_.footSpacing / 2, 0);
-  r.translation() = Eigen::Vector3d(0, -params_.footSpacing / 2, 0);
-  comIK(l, r, Eigen::Vector2d(0.005, 0), h0 + s * (params_.torsoHeight - h0), (1 - s) * p0, 0, out.position);
-  // Arms and head from the squat's to the stand's.
-  for (int j : {HeadYaw, HeadPitch, LShoulderPitch, LShoulderRoll, LElbowYaw, LElbowRoll, LWristYaw, RShoulderPitch,
-                RShoulderRoll, RElbowYaw, RElbowRoll, RWristYaw})
-    out.position[j] = squatJ[j] + s * (stand_[j] - squatJ[j]);
   gyro_ = 0.7 * gyro_ + 0.3 * frame.inertial.gyroscope.head<2>();
+  if (phase_ == Phase::Rise) {
+    // Feet flat, the COM above their midpoint, the torso from the squat's height and pitch
+    // to upright; the arms and head from the squat's to the stand's.
+    const double s = smoothstep((frame.time - phaseStart_) / params_.riseTime);
+    out.position = riseFrom_;
+    risePosture(params_, squat_, s, out.position);
+    for (int j : {HeadYaw, HeadPitch, LShoulderPitch, LShoulderRoll, LElbowYaw, LElbowRoll, LWristYaw, RShoulderPitch,
+                  RShoulderRoll, RElbowYaw, RElbowRoll, RWristYaw})
+      out.position[j] = riseFrom_[j] + s * (stand_[j] - riseFrom_[j]);
+    if (s >= 1) {
+      phase_ = Phase::Settle;
+      phaseStart_ = frame.time;
+      settleFrom_ = out.position;
+      uprightSince_ = -1;
+    }
+  } else {
+    // Settling into the stand; done once the IMU has said "upright" for settleTime.
+    const double s = smoothstep((frame.time - phaseStart_) / 0.3);
+    for (int j = 0; j < NumJoints; ++j) out.position[j] = settleFrom_[j] + s * (stand_[j] - settleFrom_[j]);
+    const double tilt = tiltOf(frame);
+    if (tilt < params_.uprightTilt) {
+      if (uprightSince_ < 0) uprightSince_ = frame.time;
+      if (frame.time - uprightSince_ >= params_.settleTime) done_ = true;
+    } else {
+      uprightSince_ = -1;
+    }
+    if (!done_ && frame.time - phaseStart_ > params_.settleMaxTime) failed_ = true;
+  }
   for (Joint a : {LAnklePitch, RAnklePitch}) out.position[a] += params_.gyroGain * gyro_.y();
   for (Joint a : {LAnkleRoll, RAnkleRoll}) out.position[a] += params_.gyroGain * gyro_.x();
-  if (s >= 1) done_ = true;
   return out;
 }
 

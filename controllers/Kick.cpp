@@ -62,7 +62,7 @@ void Kick::start(const SensorFrame& frame, const JointArray& stand, const Vector
   const double reach = dims::kSoleFront + kBallRadius;
   const Vector2d contact = ballStart_ - reach * Vector2d(std::cos(footYaw_), std::sin(footYaw_));
   strikePoint_ = contact + params_.followThrough * Vector2d(std::cos(footYaw_), std::sin(footYaw_));
-  strikePoint_.x() = std::clamp(strikePoint_.x(), 0.0, 0.13);
+  strikePoint_.x() = std::clamp(strikePoint_.x(), 0.0, params_.strikeReach);
   strikePoint_.y() -= s * params_.strikeInward;
   strikePoint_.y() = s * std::clamp(s * strikePoint_.y(), half - 0.03, half + 0.05);
 }

@@ -15,12 +15,15 @@
 // COM model), gyro damping on the support ankle, and the support leg's sag is compensated
 // from the weight it carries (FSRs).
 //
-// Direction: measured over kicks in the simulator, the ball left ~8 deg inward of the foot's
+// Direction: measured over kicks in the simulator, the ball left ~4 deg inward of the foot's
 // path (the toe meets it slightly outside its centre line while the leg swings in), so the
 // foot aims yawBias outward and the strike path runs strikeInward towards the ball's centre.
-// Distance: the ball leaves at about the toe's speed (the simulated foot-ball contact is
-// critically damped, no rebound), and the toe reaches ~2 m/s with hip, knee and ankle at their
-// no-load speeds (6.4 rad/s); on the simulated carpet that rolls the ball ~2 m.
+// Distance: hip pitch, knee and ankle all run at their no-load speeds (~6.4 rad/s) through the
+// strike; the sole peaks at ~2 m/s just as it meets the ball. The foam ball rebounds off the
+// foot (restitution ~0.5, sim/SceneBuilder.cpp), so it leaves at ~2.8 m/s, without topspin: it
+// slides (or hops) until it rolls at ~5/7 of that, and rolls ~3 m on the simulated carpet.
+// The toe waits ballGap behind the ball: the walk's last step swings the foot ahead of its
+// stand position, and a closer ball would be pushed away before the kick.
 #include <Eigen/Core>
 
 #include "controllers/MotionRequest.h"
@@ -43,15 +46,16 @@ class Kick {
     double returnTime = 0.7;
     double comInward = 0.01;      // m: the COM over the support sole, towards the inner edge
     double comForward = 0.015;    // m
-    double liftHeight = 0.066;    // m
+    double liftHeight = 0.09;     // m
     double windUp = 0.08;         // m behind the sole's stand position
-    double strikeHeight = 0.043;   // m: sole height at the strike
-    double followThrough = 0.09;  // m past the ball's contact point
-    double windUpPitch = 0.045;    // rad, the kicking sole's pitch at the wind-up (Ry: > 0 toe down)
-    double strikePitch = 0.19;    // rad, at the end of the strike
-    double ballGap = 0.028;       // m between the toe and the ball in the kick pose
+    double strikeHeight = 0.06;   // m: sole height at the strike (the servos lag: it passes lower)
+    double followThrough = 0.12;  // m past the ball's contact point
+    double strikeReach = 0.13;    // m: the strike ends at most this far in front of the stand position
+    double windUpPitch = -0.2;    // rad, the kicking sole's pitch at the wind-up (Ry: > 0 toe down)
+    double strikePitch = 0.2;     // rad, at the end of the strike
+    double ballGap = 0.04;        // m between the toe and the ball in the kick pose
     double maxFootYaw = 0.35;     // rad: the remaining direction error the foot corrects
-    double yawBias = 0.05;        // rad: the kicking foot aims this much outward of the direction
+    double yawBias = 0.1;         // rad: the kicking foot aims this much outward of the direction
     double strikeInward = 0.02;   // m: the strike path this much inward of the ball's centre line
     double gyroPitchGain = 0.1;   // rad per rad/s on the support ankle
     double gyroRollGain = 0.1;

@@ -117,7 +117,9 @@ Pose2 MotionEngine::walkToSpeed(const Pose2& target, double positionTolerance, d
   const double distance = std::hypot(rel.x, rel.y);
   const Params& p = params_;
   if (distance < positionTolerance && std::abs(rel.theta) < angleTolerance) walkToStopped_ = true;
-  if (walkToStopped_ && distance < 2.5 * positionTolerance && std::abs(rel.theta) < 2 * angleTolerance) return {};
+  if (walkToStopped_ && distance < p.walkToResumePosition * positionTolerance &&
+      std::abs(rel.theta) < p.walkToResumeAngle * angleTolerance)
+    return {};
   walkToStopped_ = false;
   // Far: face the path. Near: the target's heading. In between a blend.
   const double pathAngle = std::atan2(rel.y, rel.x);
@@ -173,7 +175,8 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
           }
           speed = walkToSpeed(walkTarget_, params_.walkToPositionTolerance, params_.walkToAngleTolerance);
           stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
-          if (std::getenv("NAO_WALKTO_TRACE") && static_cast<int>(frame.time / kCycle) % 8 == 0) {
+          static const bool trace = std::getenv("NAO_WALKTO_TRACE") != nullptr;
+          if (trace && static_cast<int>(frame.time / kCycle) % 8 == 0) {
             const Pose2 rel = odometry_.pose.inverse() * walkTarget_;
             std::fprintf(stderr, "t=%.2f rel %.3f %.3f %.1f speed %.3f %.3f %.1f phase %d\n", frame.time, rel.x, rel.y, rel.theta * 57.3,
                          speed.x, speed.y, speed.theta * 57.3, static_cast<int>(walk_.phase()));

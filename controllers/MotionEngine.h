@@ -43,6 +43,8 @@ class MotionEngine {
     double walkToNearSpeed = 0.1;         // m/s, per axis, near the target
     double walkToPositionTolerance = 0.01;  // m
     double walkToAngleTolerance = 0.03;     // rad
+    // Once stopped, the robot walks again only when the stand pose is this many tolerances off.
+    double walkToResumePosition = 2.5, walkToResumeAngle = 2.0;
     double kickPositionTolerance = 0.015;   // m: the kick pose reached (the kick corrects the rest)
     double kickAngleTolerance = 0.06;       // rad
   };

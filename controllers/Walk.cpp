@@ -248,6 +248,11 @@ JointArray Walk::solve(const Foot3& left, const Foot3& right, double torsoYaw, c
     if (swingSide == -1) r.translation() = l.translation() + rightCorrection * (r.translation() - l.translation());
     l.linear() = leftCorrection * l.linear();
     r.linear() = rightCorrection * r.linear();
+    if (params_.levelSoles) {
+      // The sole seen level by the (offset) joint angles stands tilted by -level in truth.
+      l.linear() = l.linear() * rotX(level_[0].x()) * rotY(level_[0].y());
+      r.linear() = r.linear() * rotX(level_[1].x()) * rotY(level_[1].y());
+    }
     legsIK(l, r, joints);
     torso_ = torso;
     if (iter == 2) break;
@@ -353,7 +358,8 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
         target.x += shift.x();
         target.y += shift.y();
         swingTarget_ = clipTarget(support_, !supportLeft_, target);
-        if (std::getenv("NAO_WALK_TRACE") && std::abs(t_ - 0.5 * stepDuration_) < dt / 2) {
+        static const bool trace = std::getenv("NAO_WALK_TRACE") != nullptr;
+        if (trace && std::abs(t_ - 0.5 * stepDuration_) < dt / 2) {
           const Pose2 n = support_.inverse() * nominal, a = support_.inverse() * target, c = support_.inverse() * swingTarget_;
           std::fprintf(stderr, "t=%.3f sup%c nominal %.3f %.3f %.1f adjusted %.3f %.3f clipped %.3f %.3f | speed %.3f %.3f %.1f\n",
                        frame.time, supportLeft_ ? 'L' : 'R', n.x, n.y, n.theta * 57.3, a.x, a.y, c.x, c.y, speed_.x, speed_.y,
@@ -390,6 +396,7 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
   }
 
   if (phase_ != Phase::Walking) measureState(frame, dt);  // no single support: no comparison
+  if (phase_ == Phase::Standing) estimateLevel(frame, dt);
 
   // Tilt corrections. The swing sole is kept parallel to the ground (and its position relative
   // to the support sole right in the world) by undoing the torso's measured tilt beyond the
@@ -473,6 +480,31 @@ void Walk::measureState(const SensorFrame& frame, double dt) {
   haveMeasurement_ = true;
 }
 
+// Standing quietly on both feet the floor holds the soles flat; the measured joint angles and
+// the IMU's tilt then put each sole at the roll and pitch that the leg's joint offsets (hip,
+// knee, ankle) add up to, negated. Averaged, that is what the IK targets turn back, so the
+// swing foot lands flat and the support foot is not loaded on an edge: a sole pitched by 1 deg
+// made the robot crab sideways by 25 cm over 2.7 m (the feet slipping), beyond the odometry.
+void Walk::estimateLevel(const SensorFrame& frame, double dt) {
+  if (!params_.levelSoles || dt <= 0) return;
+  const double fl = frame.fsr.total(true), fr = frame.fsr.total(false);
+  if (fl + fr < 0.5 || std::min(fl, fr) < 0.25 * (fl + fr)) return;  // not on both feet
+  if (frame.inertial.gyroscope.norm() > 0.15) return;                 // not quiet
+  const Eigen::Matrix3d tilt = torsoTilt(frame.inertial.angle.x(), frame.inertial.angle.y());
+  // Averaging (1 / n) at first, then a moving average with the time constant.
+  levelWeight_ = std::min(levelWeight_ + dt, params_.levelTime);
+  const double a = dt / levelWeight_;
+  for (int side = 0; side < 2; ++side) {
+    const Eigen::Matrix3d w = tilt * torsoToSole(frame.joints.position, side == 0 ? BodySide::Left : BodySide::Right).linear();
+    const Vector2d rp(std::atan2(w(2, 1), w(2, 2)), std::atan2(-w(2, 0), std::hypot(w(2, 1), w(2, 2))));
+    const Vector2d goal = rp.cwiseMax(-params_.maxLevelCorrection).cwiseMin(params_.maxLevelCorrection);
+    // Slew-limited: the first estimate is a full step (a = 1), and a sudden 4 deg change of every
+    // IK target would jerk the robot (LoLA peer test: targets move <= 0.05 rad per cycle).
+    const Vector2d change = a * (goal - level_[side]);
+    level_[side] += change.cwiseMax(-params_.maxLevelRate * dt).cwiseMin(params_.maxLevelRate * dt);
+  }
+}
+
 void Walk::compensateSag(JointArray& joints, const Foot3& left, const Foot3& right, double leftShare) const {
   if (params_.sagCompensation <= 0) return;
   // The ground's force on the robot: gravity and the LIPM's horizontal push, in the torso frame.
@@ -520,7 +552,8 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
     const double w = std::pow(odometryLeftShare_, params_.odometryLoadExponent);
     const double wr = std::pow(1 - odometryLeftShare_, params_.odometryLoadExponent);
     const double a = w / std::max(w + wr, 1e-9);
-    Pose2 delta(a * dl.x + (1 - a) * dr.x, a * dl.y + (1 - a) * dr.y, a * dl.theta + (1 - a) * dr.theta);
+    const double k = params_.odometryScale;
+    Pose2 delta(k * (a * dl.x + (1 - a) * dr.x), k * (a * dl.y + (1 - a) * dr.y), a * dl.theta + (1 - a) * dr.theta);
     if (params_.gyroOdometry) delta.theta = turn;
     odometry_ = odometry_ * delta;
   } else {

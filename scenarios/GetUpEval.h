@@ -21,6 +21,7 @@ struct GetUpTrialOptions {
 };
 
 struct GetUpTrialResult {
+  bool fell = false;                 // lying when asked to stand (else the trial failed)
   bool fellOnRequestedSide = false;
   bool success = false;   // upright (tilt < 20 deg, torso above 0.2 m) and standing 1 s, within the limit
   double time = -1;       // s from lying still to upright (when success)

@@ -293,6 +293,12 @@ WalkToResult runWalkTo(const WalkToOptions& o) {
   const Eigen::Vector3d truth = relativeTo(start, sim.truePose());
   r.positionError = std::hypot(truth.x() - o.target.x, truth.y() - o.target.y);
   r.angleError = std::abs(Pose2::wrap(truth.z() - o.target.theta));
+  const Pose2 odo = track.odometryStart.inverse() * sim.odometry().pose;
+  r.odometryOffset = Eigen::Vector2d(odo.x - truth.x(), odo.y - truth.y());
+  r.odometryPositionError = r.odometryOffset.norm();
+  r.odometryAngleError = std::abs(Pose2::wrap(odo.theta - truth.z()));
+  r.controlPositionError = std::hypot(odo.x - o.target.x, odo.y - o.target.y);
+  r.controlAngleError = std::abs(Pose2::wrap(odo.theta - o.target.theta));
   r.falls = track.falls;
   r.variation = sim.variation();
   return r;
@@ -302,7 +308,7 @@ WalkToEvalResult evalWalkTo(int trials, std::uint64_t seed, bool randomize, cons
                             const std::function<void(int, int)>& progress, const RobotVariation& variation) {
   if (trials < 1) throw Error("--trials", "must be at least 1");
   WalkToEvalResult result;
-  std::vector<double> pos, ang;
+  std::vector<double> pos, ang, odo;
   for (int t = 0; t < trials; ++t) {
     const std::uint64_t s = seed * 7919ULL + static_cast<std::uint64_t>(t);
     std::mt19937_64 rng(s);
@@ -319,6 +325,7 @@ WalkToEvalResult evalWalkTo(int trials, std::uint64_t seed, bool randomize, cons
     result.reached += r.reached;
     pos.push_back(r.positionError);
     ang.push_back(r.angleError);
+    odo.push_back(r.odometryPositionError);
     result.trials.push_back(r);
     if (progress) progress(t + 1, trials);
   }
@@ -326,6 +333,8 @@ WalkToEvalResult evalWalkTo(int trials, std::uint64_t seed, bool randomize, cons
   result.positionErrorMax = *std::max_element(pos.begin(), pos.end());
   result.angleErrorMedian = median(ang);
   result.angleErrorMax = *std::max_element(ang.begin(), ang.end());
+  result.odometryPositionErrorMedian = median(odo);
+  result.odometryPositionErrorMax = *std::max_element(odo.begin(), odo.end());
   return result;
 }
 

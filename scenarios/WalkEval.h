@@ -155,6 +155,11 @@ struct WalkToResult {
   double time = 0;            // s until then
   double positionError = 0;   // m, ground truth
   double angleError = 0;      // rad, ground truth
+  // Where the error comes from: the odometry's final pose against ground truth (both relative
+  // to the start), and the target against the odometry (what the controller left).
+  double odometryPositionError = 0, odometryAngleError = 0;  // m, rad: odometry - truth
+  Eigen::Vector2d odometryOffset = Eigen::Vector2d::Zero();  // m, odometry - truth (start frame)
+  double controlPositionError = 0, controlAngleError = 0;    // m, rad: odometry - target
   int falls = 0;
   AppliedVariation variation;
 };
@@ -166,6 +171,7 @@ struct WalkToEvalResult {
   std::vector<WalkToResult> trials;
   int falls = 0, reached = 0;
   double positionErrorMedian = 0, positionErrorMax = 0, angleErrorMedian = 0, angleErrorMax = 0;
+  double odometryPositionErrorMedian = 0, odometryPositionErrorMax = 0;
 };
 
 WalkToEvalResult evalWalkTo(int trials, std::uint64_t seed, bool randomize, const MotionEngine::Params& params,

@@ -42,8 +42,18 @@ constexpr double kPatchRadius = 0.016;   // m: the ball's black patches (12, lik
 constexpr double kPatchDepth = 0.004;    // m: half-thickness of a patch ellipsoid
 constexpr double kPatchRise = 0.0007;    // m: how far a patch stands out of the sphere
 // Rolling resistance of the foam ball on turf: a ball rolling at 3 m/s stops after ~5 m
-// (deceleration ~1 m/s^2); a dropped ball comes to rest without bouncing.
+// (deceleration ~1 m/s^2); a dropped ball comes to rest without bouncing (the turf's pile
+// absorbs the impact). Ball-carpet is an explicit contact pair (it overrides the generated
+// one): condim 6, friction (slide, slide, spin, roll, roll), critically damped.
 constexpr const char* kBallFriction = "0.8 0.005 0.0075";
+constexpr const char* kBallCarpetFriction = "1 1 0.005 0.0075 0.0075";
+constexpr const char* kBallCarpetSolref = "0.02 1";
+// Against hard things (the robot's plastic feet and legs, goal posts) the foam ball rebounds
+// with a coefficient of restitution of about 0.5: an underdamped contact (time constant,
+// damping ratio < 1), measured by tests/world_test (BallReboundsOffAGoalPost). The ball's geom
+// has priority 2, above the soles' 1, so its solref/solimp/friction govern those contacts.
+constexpr const char* kBallSolref = "0.02 0.28";
+constexpr const char* kBallSolimp = "0.9 0.95 0.001";
 
 // Name-reference attributes of MJCF elements that point at per-robot objects. Asset and
 // default-class references (class, childclass, material, texture, mesh, hfield) stay shared.
@@ -467,11 +477,24 @@ void addBall(Scene& s, int index, const Eigen::Vector3d& position) {
        {"material", "scene_ball"},
        {"condim", "6"},
        {"friction", kBallFriction},
+       {"priority", "2"},
+       {"solref", kBallSolref},
+       {"solimp", kBallSolimp},
        {"contype", "1"},
        {"conaffinity", "1"},
        {"margin", "0"},
        {"gap", "0"},
        {"group", "0"}});
+  add(s.contact, "pair",
+      {{"name", name + "/carpet"},
+       {"geom1", name},
+       {"geom2", "field/carpet"},
+       {"condim", "6"},
+       {"friction", kBallCarpetFriction},
+       {"solref", kBallCarpetSolref},
+       {"solimp", "0.9 0.95 0.001"},
+       {"margin", "0"},
+       {"gap", "0"}});
   // Twelve black patches at the icosahedron's vertices (a soccer ball's pentagons).
   const double phi = (1 + std::sqrt(5.0)) / 2;
   std::vector<Eigen::Vector3d> dirs;

@@ -2,7 +2,7 @@
 // - synthetic images: grass, paint and spheres ray-traced through the camera model (so the
 //   true pixel and radius are exact), a black-and-white ball, smoothly shaded spheres without
 //   a pattern (what a robot's shoulder or a goal post's foot looks like), dim and warm light,
-//   motion blur;
+//   motion blur, a ball in front of a dark trouser leg;
 // - simulated images (sim::World + CameraRenderer): balls at known positions in both cameras
 //   under every lighting preset of the sweep, on lines in front of the goal, beside the own
 //   feet; the robot's own shoulder and arm in the bottom camera and goal posts never give a
@@ -212,6 +212,32 @@ TEST(BallSynthetic, ShadedSpheresWithoutAPatternAreNoBall) {
     ASSERT_TRUE(rb.ball.seen);
     EXPECT_LT((rb.ball.position - Eigen::Vector2d(1.4, 0.05)).norm(), 0.07);
   }
+}
+
+TEST(BallSynthetic, FoundInFrontOfADarkLeg) {
+  // A ball at a person's feet: a dark trouser leg (a column of dark spheres, about the ball's
+  // width) stands right behind it and rises above it in the image. Narrow and upright like a
+  // goal post above its foot, but far darker than the ball's white: not the ball's surface
+  // carrying on upwards (real image 00268).
+  const CameraMatrix cm = standingCamera(0, 14);
+  const std::vector<Eigen::Vector2d> balls = {{1.0, 0.1}, {1.6, -0.2}, {2.2, 0.3}};
+  int k = 0;
+  for (const auto& [name, light] : kLights)
+    for (const Eigen::Vector2d& ball : balls) {
+      SCOPED_TRACE(std::string(name) + " ball at " + std::to_string(ball.x()) + "," + std::to_string(ball.y()));
+      std::vector<Sphere> scene = {
+          {Eigen::Vector3d(ball.x(), ball.y(), kBallR), kBallR, soccerBall(turn(0.9 * k, 0.5 + 0.3 * k))}};
+      ++k;
+      for (int i = 0; i < 10; ++i)
+        scene.push_back({Eigen::Vector3d(ball.x() + 0.11, ball.y(), 0.055 + 0.07 * i), 0.055, plain(0.1)});
+      const VisionResult r = runVision(syntheticImage(cm, scene, kNoPaint, light), cm);
+      ASSERT_TRUE(r.ball.seen);
+      Eigen::Vector2d px;
+      double radiusPx;
+      truePixel(cm, ball, px, radiusPx);
+      EXPECT_LT((r.ball.position - ball).norm(), 0.05 * ball.norm()) << r.ball.position.transpose();
+      EXPECT_LT((r.ball.image - px).norm(), std::max(1.5, 0.15 * radiusPx)) << r.ball.image.transpose();
+    }
 }
 
 TEST(BallSynthetic, TheVerifierTellsPatchesFromShading) {

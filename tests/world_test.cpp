@@ -7,6 +7,7 @@
 #include <mujoco/mujoco.h>
 
 #include "robot/Error.h"
+#include "sim/SceneBuilder.h"
 #include "sim/ServoModel.h"
 #include "sim/SimBackend.h"
 #include "sim/World.h"
@@ -134,6 +135,38 @@ TEST(World, BallDroppedComesToRestOnTheCarpet) {
   std::printf("ball dropped from 0.5 m: at rest after %.2f s, z = %.4f m\n", restTime, world.ballPosition(0).z());
   ASSERT_GT(restTime, 0) << "ball still moving at " << world.ballVelocity(0).norm() << " m/s";
   EXPECT_NEAR(world.ballPosition(0).z(), 0.05, 0.003);
+}
+
+// The foam ball's coefficient of restitution against hard surfaces (robot feet, goal posts),
+// which sim/SceneBuilder.cpp models; the carpet absorbs the impact (BallDroppedComesToRest...).
+constexpr double kBallRestitution = 0.5;
+
+// Thrown at a goal post at kicking speeds (no spin, centre at the post's axis): it comes back
+// at e times the speed (measured while it is in the air, before the carpet changes it).
+TEST(World, BallReboundsOffAGoalPost) {
+  World world(ballScene());
+  const mjModel* m = world.model();
+  mjData* d = world.data();
+  const int post = mj_name2id(m, mjOBJ_GEOM, "goal/opp/post_left");
+  const int joint = mj_name2id(m, mjOBJ_JOINT, "ball0");
+  ASSERT_GE(post, 0);
+  ASSERT_GE(joint, 0);
+  const Eigen::Vector3d p(d->geom_xpos + 3 * post);
+  for (double speed : {1.0, 2.0, 3.0}) {
+    // 2 cm from the post: it arrives before gravity gives it much vertical speed.
+    const double gap = m->geom_size[3 * post] + kBallRadius + 0.02;
+    world.placeBall(0, Eigen::Vector3d(p.x() - gap, p.y(), 0.5), Eigen::Vector3d(speed, 0, 0));
+    for (int i = 3; i < 6; ++i) d->qvel[m->jnt_dofadr[joint] + i] = 0;
+    double rebound = 0;
+    const double start = world.time();
+    while (world.time() - start < 0.4 && world.ballPosition(0).z() > 0.15) {
+      world.stepCycle();
+      rebound = std::max(rebound, -world.ballVelocity(0).x());
+    }
+    const double e = rebound / speed;  // nothing slows it on its way to the post
+    std::printf("ball thrown at a goal post at %.2f m/s: back at %.2f m/s, e = %.2f\n", speed, rebound, e);
+    EXPECT_NEAR(e, kBallRestitution, 0.07);
+  }
 }
 
 TEST(World, RolledBallStops) {

@@ -416,10 +416,12 @@ double outlineSupport(const CameraImage& img, const FieldTest& onField, const Ci
 }
 
 // A goal post (or a robot's leg) seen above its foot: a narrow upright object carries on
-// straight above the circle, about as wide as the ball (but wider than a line). A ball in front of a wall or a board
-// has wide background above it, or field.
+// straight above the circle, about as wide as the ball (but wider than a line), and as bright
+// as the candidate's white parts -- the candidate is then the foot of that surface. A ball in
+// front of a wall or a board has wide background above it, or field; one in front of a
+// person's dark shoe or trouser leg has something far darker than its white above it.
 bool postAbove(const CameraImage& img, const FieldTest& onField, const CameraMatrix& cm, const Circle& circle,
-               double radiusM) {
+               double radiusM, double white) {
   const Eigen::Vector2d up = imageUp(cm, circle.c, radiusM), side(-up.y(), up.x());
   const Eigen::Vector2d above = circle.c + 1.25 * circle.r * up;
   if (!insideImage(img, above.x(), above.y(), 0.5) || onField.at(img, above)) return false;
@@ -429,7 +431,7 @@ bool postAbove(const CameraImage& img, const FieldTest& onField, const CameraMat
     if (!insideImage(img, q.x(), q.y(), 0.5)) continue;
     const PixelColour ref = sampleColour(img, q.x(), q.y());
     ++looked;
-    if (onField(ref)) continue;
+    if (onField(ref) || ref.y < 0.5 * white) continue;
     const double tol = 0.3 * ref.y + 10;
     auto extent = [&](double dir) {
       double t = 1;
@@ -628,7 +630,7 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
       c.rejectedBy = "evidence";
       continue;
     }
-    if (postAbove(image, onField, cm, circle, params.radius)) {
+    if (postAbove(image, onField, cm, circle, params.radius, in.white)) {
       c.rejectedBy = "post";
       continue;
     }

@@ -48,9 +48,26 @@ bool nearBall(const BallPercept* ball, const Eigen::Vector2d& p) {
   return ball && ball->seen && (p - ball->image).norm() < 1.3 * ball->radiusPx + 2;
 }
 
-// Spots on one scan line direction, grouped by scan line.
-void collectSpots(const std::vector<ScanLine>& lines, bool vertical, int imageWidth, int imageHeight,
-                  const FieldReference& field,
+// Is p (a white region on a horizontal scan line) part of something that rises from the field
+// boundary: on the nearest vertical scan line on either side, inside the non-field region that
+// starts where that line starts (a goal post's foot, a board; field lines stop short of the
+// boundary)? Vertical lines ascend in x.
+bool risesFromBoundary(const std::vector<ScanLine>& verticals, const Eigen::Vector2d& p) {
+  auto it = std::lower_bound(verticals.begin(), verticals.end(), p.x(),
+                             [](const ScanLine& sl, double x) { return sl.coord + 0.5 < x; });
+  auto fromBoundary = [&](const ScanLine& sl) {
+    if (sl.regions.empty()) return false;
+    const ScanRegion& r = sl.regions.front();
+    return r.cls != RegionClass::Field && r.from <= sl.start && p.y() < r.to + 1;
+  };
+  if (it != verticals.end() && fromBoundary(*it)) return true;
+  return it != verticals.begin() && fromBoundary(*std::prev(it));
+}
+
+// Spots on one scan line direction, grouped by scan line. crossing: the vertical scan lines
+// (for the horizontal ones).
+void collectSpots(const std::vector<ScanLine>& lines, const std::vector<ScanLine>* crossing, bool vertical,
+                  int imageWidth, int imageHeight, const FieldReference& field,
                   const ObstaclesPercept& obstacles,
                   const CameraMatrix& cm, const LineParams& params, const BallPercept* ball,
                   std::vector<LineSpot>& spots, std::vector<std::vector<int>>& byScan) {
@@ -67,6 +84,7 @@ void collectSpots(const std::vector<ScanLine>& lines, bool vertical, int imageWi
       const double along = 0.5 * (r.from + r.to);
       const Eigen::Vector2d px = vertical ? Eigen::Vector2d(sl.coord + 0.5, along) : Eigen::Vector2d(along, sl.coord + 0.5);
       if (nearBall(ball, px)) continue;
+      if (!vertical && risesFromBoundary(*crossing, px)) continue;
       const GroundScale gs = groundScale(cm, px, params.lineWidth);
       if (!gs.valid) continue;
       const double expected = std::max(0.3, vertical ? gs.alongPx : gs.acrossPx);
@@ -208,15 +226,40 @@ LineCandidates findLineCandidates(const CameraImage& image, const ScanLineRegion
                                   const BallPercept* ball) {
   LineCandidates c;
   std::vector<std::vector<int>> byScan;
-  collectSpots(regions.vertical, true, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
+  collectSpots(regions.vertical, nullptr, true, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
   chainSpots(regions.vertical, c.spots, byScan, true, c.chains);
-  collectSpots(regions.horizontal, false, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
+  collectSpots(regions.horizontal, &regions.vertical, false, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
   chainSpots(regions.horizontal, c.spots, byScan, false, c.chains);
   for (std::size_t i = 0; i < c.chains.size(); ++i)
     splitStraight(c.spots, c.chains[i], static_cast<int>(i), 0, static_cast<int>(c.chains[i].spots.size()) - 1,
                   c.segments);
   return c;
 }
+
+namespace {
+
+// The contrast a line must show above the field beside it: the white test's fraction of the
+// field's luminance, but no more than half the room the 8-bit sensor leaves above the field.
+// Under bright light the field lies high in the range and white clips at 255; a thin line,
+// blended with the grass, then rises less above the field than that fraction asks (the room
+// is this image's, so no lighting is singled out).
+double lineContrast(double fieldLuminance) {
+  return std::max(6.0, std::min(0.18 * fieldLuminance, 0.5 * (255.0 - fieldLuminance)));
+}
+
+// The white test of one sample point on a line against one comparison point beside it (the
+// paper's: brighter and less saturated than the comparison point, which is field), with the
+// contrast above.
+bool lineWhitePair(const PixelColour& sample, const PixelColour& comparison, const FieldReference& field) {
+  if (whitePair(sample, comparison, field)) return true;
+  if (sample.y - comparison.y < lineContrast(comparison.y)) return false;
+  if (field.relSat(sample) / std::max(1.0, sample.y) >= field.relSat(comparison) / std::max(1.0, comparison.y))
+    return false;
+  if (sample.y < field.yMin || !field.isField(comparison, 0.15)) return false;
+  return !(field.isField(sample) && field.relSat(sample) > 0.5 * field.fieldRelSatPerY * sample.y);
+}
+
+}  // namespace
 
 std::optional<double> whiteRatio(const CameraImage& image, const FieldReference& field, const CameraMatrix& cm,
                                  const Eigen::Vector2d& from, const Eigen::Vector2d& to, double lineWidth,
@@ -264,7 +307,7 @@ std::optional<double> whiteRatio(const CameraImage& image, const FieldReference&
         continue;
       }
       ++pairs;
-      passed += whitePair(sample, comparison, field);
+      passed += lineWhitePair(sample, comparison, field);
     }
     ++counted;
     besidePaint += paintBeside;
@@ -348,7 +391,7 @@ double refineAcross(const CameraImage& image, const CameraMatrix& cm, Merged& m,
     const double base = 0.5 * (std::min(profile[0], profile[1]) + std::min(profile[count - 1], profile[count - 2]));
     double peak = 0;
     for (int i = 0; i < count; ++i) peak = std::max(peak, profile[i]);
-    if (peak - base < std::max(6.0, 0.15 * base)) continue;
+    if (peak - base < std::min(std::max(6.0, 0.15 * base), lineContrast(base))) continue;
     // Both ends must be near the field level (no other paint inside the window).
     if (std::abs(profile[0] - profile[count - 1]) > 0.5 * (peak - base)) continue;
     const double level = base + 0.3 * (peak - base);

@@ -141,7 +141,10 @@ ObstaclesPercept detectObstacles(const CameraImage& image, const ScanLineRegions
     const int pad = std::max(2, static_cast<int>(0.5 * wPx));
     o.left = std::max(0, static_cast<int>(minX[i]) - pad);
     o.right = std::min(image.width, static_cast<int>(maxX[i]) + pad + 1);
-    o.top = topUnseen[i] ? std::max(0, std::min(o.top, static_cast<int>(o.bottom - hPx))) : std::max(0, o.top - pad);
+    // A seen top is known to the vertical lines' sample step (at most height / 60, ScanGrid):
+    // the field above it stays out of the box (a line passing above the own shoulder).
+    const int topPad = std::max(2, image.height / 60);
+    o.top = topUnseen[i] ? std::max(0, std::min(o.top, static_cast<int>(o.bottom - hPx))) : std::max(0, o.top - topPad);
     if (const auto g = cm.pixelToGround({footX, o.bottom - 0.5})) o.footRobot = *g;
     out.obstacles.push_back(o);
   }
