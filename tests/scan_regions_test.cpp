@@ -237,6 +237,25 @@ TEST(ScanGrid, AdaptsToTheCameraAndStaysBelowTheHorizon) {
         EXPECT_LE(widest, std::max<double>(g.minSpacing, std::min<double>(32.0, g.lineWidthPx[y])) + 1e-9)
             << "row " << y << " line width " << g.lineWidthPx[y];
       }
+      // Neighbouring horizontal lines are no farther apart than the expected width of a field
+      // line there, nor (far away, where a line running up the image is short) than 15 cm of
+      // ground along the view (plus the finest spacing's worth, 480 / 120 px), or they are
+      // within twice the finest spacing.
+      ASSERT_EQ(g.extraRow.size(), g.ys.size());
+      int extras = 0;
+      for (std::size_t i = 1; i < g.ys.size(); ++i) {
+        const int y0 = g.ys[i - 1], y1 = g.ys[i];
+        extras += g.extraRow[i];
+        EXPECT_LE(y1 - y0, std::max(4.0, std::min<double>(32.0, g.lineWidthPx[y1])) + 1) << "row " << y1;
+        if (y1 - y0 < 8) continue;
+        const auto p0 = cm.pixelToGround({320, y0 + 0.5}), p1 = cm.pixelToGround({320, y1 + 0.5});
+        const auto p0b = cm.pixelToGround({320, y0 + 4.5});
+        if (!p0 || !p1 || !p0b) continue;
+        EXPECT_LE((*p0 - *p1).norm(), 0.15 + (*p0 - *p0b).norm() + 1e-9) << "rows " << y0 << " " << y1;
+      }
+      if (pitch < 10 * kDeg) {
+        EXPECT_GT(extras, 0);
+      }
       // The expected width agrees with the projection of a 5 cm line.
       const int row = (g.horizonY + 480) / 2;
       const auto ground = cm.pixelToGround({320, row + 0.5});
@@ -328,6 +347,50 @@ TEST(ScanLineRegions, RegionsTileTheScannedLines) {
   const RegionScore againScore = score(again, s.truth);
   EXPECT_GE(againScore.fieldCoverage(), 0.97);
   EXPECT_GE(againScore.whitePrecision(), 0.9);
+}
+
+TEST(ScanLineRegions, ExtraRowsLeaveTheColourStatisticsAlone) {
+  // A flat view: the far rows get extra horizontal lines. Without them, the field colour and
+  // the white point are exactly the same, and so are the other lines' regions.
+  const CameraMatrix cm = cameraAt(0.5, 6 * kDeg);
+  const ScanGrid grid = makeScanGrid(cm, 640, 480);
+  ScanGrid coarse = grid;
+  coarse.ys.clear(), coarse.leftX.clear(), coarse.rightX.clear(), coarse.xStep.clear(), coarse.extraRow.clear();
+  for (std::size_t i = 0; i < grid.ys.size(); ++i)
+    if (!grid.extraRow[i]) {
+      coarse.ys.push_back(grid.ys[i]), coarse.leftX.push_back(grid.leftX[i]), coarse.rightX.push_back(grid.rightX[i]);
+      coarse.xStep.push_back(grid.xStep[i]), coarse.extraRow.push_back(0);
+    }
+  ASSERT_LT(coarse.ys.size(), grid.ys.size());
+  std::uint64_t seed = 3;
+  for (const Light& light : lights()) {
+    const Scene s = render(cm, light, seed++);
+    const CameraImage img = toCameraImage(s.rgb);
+    const ScanLineRegions a = computeScanLineRegions(img, grid, nullptr), b = computeScanLineRegions(img, coarse, nullptr);
+    const FieldColour &fa = a.fieldColour, &fb = b.fieldColour;
+    ASSERT_TRUE(fa.valid) << light.name;
+    EXPECT_EQ(fa.fieldY, fb.fieldY) << light.name;
+    EXPECT_EQ(fa.hueMin, fb.hueMin) << light.name;
+    EXPECT_EQ(fa.hueMax, fb.hueMax) << light.name;
+    EXPECT_EQ(fa.satMin, fb.satMin) << light.name;
+    EXPECT_EQ(fa.whiteYMin, fb.whiteYMin) << light.name;
+    EXPECT_EQ(fa.whiteU, fb.whiteU) << light.name;
+    EXPECT_EQ(fa.whiteV, fb.whiteV) << light.name;
+    ASSERT_EQ(a.vertical.size(), b.vertical.size());
+    for (std::size_t i = 0; i < a.vertical.size(); ++i) {
+      ASSERT_EQ(a.vertical[i].regions.size(), b.vertical[i].regions.size()) << light.name << " line " << i;
+      for (std::size_t k = 0; k < a.vertical[i].regions.size(); ++k)
+        EXPECT_EQ(a.vertical[i].regions[k].cls, b.vertical[i].regions[k].cls) << light.name << " line " << i;
+    }
+    // Every coarse horizontal line is there with the same regions.
+    std::size_t j = 0;
+    for (const ScanLine& l : b.horizontal) {
+      while (j < a.horizontal.size() && a.horizontal[j].coord != l.coord) ++j;
+      ASSERT_LT(j, a.horizontal.size()) << light.name << " row " << l.coord;
+      ASSERT_EQ(a.horizontal[j].regions.size(), l.regions.size()) << light.name << " row " << l.coord;
+      for (std::size_t k = 0; k < l.regions.size(); ++k) EXPECT_EQ(a.horizontal[j].regions[k].cls, l.regions[k].cls);
+    }
+  }
 }
 
 TEST(ScanLineRegions, NoFieldNoImage) {

@@ -658,7 +658,8 @@ std::vector<LinesPercept::Line> fitLines(const LineCandidates& candidates, const
       continue;
     }
     std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-    if (ratios[ratios.size() / 2] > 1.0) {
+    const bool unconfirmed = refinedResidual < 0 && static_cast<int>(m.spots.size()) < params.unrefinedSpots;
+    if (ratios[ratios.size() / 2] > (unconfirmed ? params.unrefinedThickness : 1.0)) {
       reject("thickness", ratios[ratios.size() / 2]);
       continue;
     }

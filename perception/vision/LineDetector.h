@@ -24,6 +24,12 @@ struct LineParams {
   double mergeWhiteRatio = 0.75;  // of the white test's pairs along a gap two segments are merged across
   double lineWhiteRatio = 0.6;    // of the white test's pairs along a whole line to report it
   int minSpots = 4;               // per reported line
+  // A line with fewer spots than this whose pixels do not refine (see refineAcross) must be
+  // about as thick as a line: its median run, turned across it, at most this fraction of
+  // twice the expected width (+1.5 px); on real images such lines were a robot's arm, twice
+  // as wide as a line there.
+  int unrefinedSpots = 6;
+  double unrefinedThickness = 0.6;
   int minSpotsRefined = 4;        // the same with a sub-pixel refinement (3-spot lines were mostly object edges on real images)
   double minLengthM = 0.25;       // per reported line (on the ground)
   double maxDistanceM = 5;        // lines whose nearest point is farther are not reported

@@ -7,7 +7,12 @@ namespace nao {
 namespace {
 
 // Grid constants: pure geometry (fractions of the expected line size), not tuned for light.
-constexpr double kSpacingPerLineWidth = 1.0;  // vertical/horizontal line spacing per expected line width
+constexpr double kSpacingPerLineWidth = 1.0;  // vertical (and regular horizontal) line spacing per expected line width
+// Horizontal lines find the lines that run up the image (away from the camera). Far away such
+// a line is short in the image against its width (a 0.6 m goal box side 3 m away spans about
+// two line widths), so extra rows lie between two rows a line's width apart, at most this
+// many line heights apart (15 cm of ground along the view: such a line is crossed 4 times).
+constexpr double kRowSpacingPerLineHeight = 3.0;
 constexpr double kStepPerLineSize = 0.6;      // sample step per expected line thickness along the line
 // Every other pixel at least: the 3-pixel smoothing kernel still covers each pixel.
 constexpr int kMinStep = 2;
@@ -154,15 +159,30 @@ ScanGrid makeScanGrid(const CameraMatrix& cmIn, int W, int H, double lineWidthM)
   // Horizontal lines, from the bottom up.
   const int minSpacingY = std::max(2, H / 120), maxSpacingY = std::max(minSpacingY, H / 15);
   const int maxStepX = std::max(2, W / 80);
+  // The regular rows (a line's width apart), and above each of them, up to the next one, extra
+  // rows a line's height times kRowSpacingPerLineHeight apart where that is closer (far rows
+  // only), none closer than minSpacingY to the next regular row.
   std::vector<int> rows;
+  std::vector<char> extra;
   for (int y = H - 1 - maxSpacingY / 4; y >= g.horizonY;) {
     rows.push_back(y);
-    const double s = std::clamp(g.lineWidthPx[y] * kSpacingPerLineWidth, static_cast<double>(minSpacingY),
-                                static_cast<double>(maxSpacingY));
-    y -= static_cast<int>(s);
+    extra.push_back(0);
+    const int s = static_cast<int>(std::clamp(g.lineWidthPx[y] * kSpacingPerLineWidth, static_cast<double>(minSpacingY),
+                                              static_cast<double>(maxSpacingY)));
+    const int next = y - s;
+    for (int e = y;;) {
+      e -= static_cast<int>(std::clamp(g.lineHeightPx[e] * kRowSpacingPerLineHeight, static_cast<double>(minSpacingY),
+                                       static_cast<double>(maxSpacingY)));
+      if (e < g.horizonY || e - next < minSpacingY) break;
+      rows.push_back(e);
+      extra.push_back(1);
+    }
+    y = next;
   }
   std::reverse(rows.begin(), rows.end());
-  for (int y : rows) {
+  std::reverse(extra.begin(), extra.end());
+  for (std::size_t row = 0; row < rows.size(); ++row) {
+    const int y = rows[row];
     // Columns below the horizon: a + b px + c py < -eps.
     double lo = 0, hi = W;
     const double r = a + c * (y + 0.5);
@@ -195,6 +215,7 @@ ScanGrid makeScanGrid(const CameraMatrix& cmIn, int W, int H, double lineWidthM)
     g.rightX.push_back(right);
     const double s = g.lineWidthPx[y] > 0 ? g.lineWidthPx[y] * kStepPerLineSize : 1.0;
     g.xStep.push_back(std::clamp(static_cast<int>(s), kMinStep, maxStepX));
+    g.extraRow.push_back(extra[row]);
   }
   return g;
 }

@@ -4,11 +4,13 @@
 // field line at each row: a fine set reaches down only as far as it is needed, every second
 // line of it further, and so on (a hierarchy of spacings from minSpacing to maxSpacing), so
 // far thin lines are still hit while near rows are scanned coarsely. Horizontal lines are
-// spaced likewise by the same width at their row. Nothing above the horizon is scanned;
-// the field boundary cuts the lines later (cutAtBoundary / computeScanLineRegions). The
-// sample step along a line follows the expected thickness of a field line crossing it (every
-// other pixel at least: the 3-pixel smoothing still covers each pixel). The robot's own feet
-// (bottom camera looking down) are left out.
+// spaced likewise by the same width at their row; where that spans more than 3 line widths
+// of ground along the view (far away), extra rows lie between them, so that a short line
+// running up the image (a goal box side) is still crossed often enough. Nothing above the
+// horizon is scanned; the field boundary cuts the lines later (cutAtBoundary /
+// computeScanLineRegions). The sample step along a line follows the expected thickness of a
+// field line crossing it (every other pixel at least: the 3-pixel smoothing still covers each
+// pixel). The robot's own feet (bottom camera looking down) are left out.
 #include <vector>
 
 #include "perception/CameraModel.h"
@@ -35,6 +37,11 @@ struct ScanGrid {
   // Horizontal lines, ascending y. Each is scanned over columns [leftX, rightX) with a step.
   std::vector<int> ys;
   std::vector<int> leftX, rightX, xStep;
+  // Per horizontal line: 1 for an extra row between two rows a line's width apart (far
+  // away, where a line running up the image is short, see makeScanGrid). Extra rows only add
+  // detail (line spots); the image's colour statistics come from the other lines alone, so
+  // that they do not depend on how densely the far field is scanned.
+  std::vector<char> extraRow;
 
   // Per image row: expected image size (px) of a field line at the image's centre column:
   // its width when it runs away from the camera (across the row) and its height when it

@@ -197,6 +197,7 @@ class Regionizer {
   }
 
   void scanHorizontal(ScanLineRegions& out) {
+    hExtra_.clear();
     for (std::size_t i = 0; i < grid_.ys.size(); ++i) {
       const int y = grid_.ys[i];
       int left = grid_.leftX[i], right = grid_.rightX[i];
@@ -210,10 +211,13 @@ class Regionizer {
       const int step = grid_.xStep[i];
       for (int x = left; x < right; x += step) samples_.push_back(sampleHorizontal(p_, x, y));
       if (samples_.back().pos < right - 1) samples_.push_back(sampleHorizontal(p_, right - 1, y));
-      // Spacing to the neighbouring horizontal lines: the line's share of the image.
-      const float share = static_cast<float>(std::max(1.0f, grid_.lineWidthPx[y]));
+      // Spacing to the neighbouring horizontal lines: the line's share of the image. An extra
+      // row (see ScanGrid::extraRow) has none: it adds no weight to the colour statistics.
+      const bool extra = i < grid_.extraRow.size() && grid_.extraRow[i];
+      const float share = extra ? 0.f : static_cast<float>(std::max(1.0f, grid_.lineWidthPx[y]));
       makeRegions(line, begin, samples_.size(), false, share);
       out.horizontal.push_back(std::move(line));
+      hExtra_.push_back(extra);
     }
   }
 
@@ -366,9 +370,13 @@ class Regionizer {
         covered = std::max(covered, hi);
       }
     }
-    for (std::size_t i = 0; i + 1 < out.horizontal.size(); ++i) {
-      const ScanLine &a = out.horizontal[i], &b = out.horizontal[i + 1];
-      uniteOverlapping(a, hOffset[i], b, hOffset[i + 1], std::max(a.start, b.start), std::min(a.end, b.end));
+    // (Extra rows take no part: the field colour comes from the regular lines alone.)
+    for (std::size_t i = 0, j = 0; i < out.horizontal.size(); i = j) {
+      for (j = i + 1; j < out.horizontal.size() && hExtra_[j]; ++j) {
+      }
+      if (j >= out.horizontal.size() || hExtra_[i]) continue;
+      const ScanLine &a = out.horizontal[i], &b = out.horizontal[j];
+      uniteOverlapping(a, hOffset[i], b, hOffset[j], std::max(a.start, b.start), std::min(a.end, b.end));
     }
     // Crossings: walk each vertical line's regions down the horizontal lines (both sorted),
     // each horizontal line's regions along the vertical lines (ascending x).
@@ -380,7 +388,7 @@ class Regionizer {
       for (std::size_t h = 0; h < out.horizontal.size(); ++h) {
         const ScanLine& hl = out.horizontal[h];
         const int y = hl.coord;
-        if (y < vl.start) continue;
+        if (hExtra_[h] || y < vl.start) continue;
         if (y >= vl.end) break;
         if (x < hl.start || x >= hl.end) continue;
         while (rv < vl.regions.size() && vl.regions[rv].to <= y) ++rv;
@@ -531,8 +539,13 @@ class Regionizer {
     whiteU_ = whiteV_ = 0;
     std::vector<std::pair<float, float>> us, vs;  // (value, weight)
     double total = 0;
-    auto collect = [&](const std::vector<ScanLine>& lines, std::size_t g) {
-      for (const ScanLine& line : lines) {
+    auto collect = [&](const std::vector<ScanLine>& lines, std::size_t g, const std::vector<char>* extra) {
+      for (std::size_t l = 0; l < lines.size(); ++l) {
+        const ScanLine& line = lines[l];
+        if (extra && (*extra)[l]) {
+          g += line.regions.size();
+          continue;
+        }
         for (std::size_t k = 1; k + 1 < line.regions.size(); ++k) {
           const std::size_t i = g + k;
           if (member_[i] || line.regions[k - 1].cls != RegionClass::Field || line.regions[k + 1].cls != RegionClass::Field)
@@ -547,8 +560,8 @@ class Regionizer {
         g += line.regions.size();
       }
     };
-    collect(out.vertical, 0);
-    collect(out.horizontal, verticalCount_);
+    collect(out.vertical, 0, nullptr);
+    collect(out.horizontal, verticalCount_, &hExtra_);
     if (!us.empty()) estimateWhitePoint(us, vs, total);
     fc.whiteU = whiteU_;
     fc.whiteV = whiteV_;
@@ -699,6 +712,7 @@ class Regionizer {
   std::vector<int> cuts_;
   std::vector<RegionStats> stats_;  // vertical lines' regions, then horizontal lines'
   std::size_t verticalCount_ = 0;
+  std::vector<char> hExtra_;  // per horizontal line of the output: an extra row
   std::vector<int> parent_;
   std::vector<SetSum> sets_;
   std::vector<char> isFieldSet_, member_;  // per set root; per region
