@@ -28,8 +28,10 @@ double tiltOf(const SensorFrame& frame) {
 // beyond that head down (hips up); -pi/2 lying on the back. The IMU's pitch alone folds back
 // beyond 90 deg (the roll then reads ~180 deg).
 double forwardLean(const SensorFrame& frame) {
+  // The torso's z axis has the upward component cos(roll) cos(pitch), its x axis -sin(pitch):
+  // leaning forward by `lean`, z up = cos(lean), x up = -sin(lean).
   const double roll = frame.inertial.angle.x(), pitch = frame.inertial.angle.y();
-  double lean = std::atan2(std::cos(roll) * std::sin(pitch), std::cos(roll) * std::cos(pitch));
+  double lean = std::atan2(std::sin(pitch), std::cos(roll) * std::cos(pitch));
   if (lean < -M_PI / 2 - 0.3) lean += 2 * M_PI;
   return lean;
 }
@@ -177,6 +179,11 @@ std::vector<GetUp::KeyFrame> GetUp::frontFrames(const Params& params) {
   arms.shoulderPitch = 26.0;
   arms.elbowRoll = 13.8;
   KeyFrame squat = squatFrame(params.frontSquat, 0.20, arms);
+  // Early abort: not on the feet with the torso leaning less than ~75 deg by now, the rise
+  // cannot work; failing here lets the motion engine start the next attempt at once.
+  squat.pitchMin = -0.3;
+  squat.pitchMax = params.squatMaxLean;
+  squat.maxWait = 0.6;
   frames.push_back(squat);
   return frames;
 }
@@ -320,6 +327,11 @@ JointRequest GetUp::update(const SensorFrame& frame) {
     // Feet flat, the COM above their midpoint, the torso from the squat's height and pitch
     // to upright; the arms and head from the squat's to the stand's.
     const double s = smoothstep((frame.time - phaseStart_) / params_.riseTime);
+    if (tiltOf(frame) > params_.riseMaxTilt) {  // toppling: give up early, try again
+      failed_ = true;
+      out.position = frame.joints.position;
+      return out;
+    }
     out.position = riseFrom_;
     risePosture(params_, squat_, s, out.position);
     for (int j : {HeadYaw, HeadPitch, LShoulderPitch, LShoulderRoll, LElbowYaw, LElbowRoll, LWristYaw, RShoulderPitch,

@@ -20,7 +20,10 @@
 // gets up from there -- after every roll the IMU says which sequence follows.
 //
 // Status (issue 4, measured 2026-11-23 with `nao-soccer eval getup --trials 20`, every trial
-// starting lying): front 2/20 up (median 6.0 s), back 0/20; randomised robots 0/20 and 0/20.
+// starting lying): front 2/20 up (median 6.0 s), back 0/20; randomised robots 3/20 (with the
+// early aborts below, 0/20 without) and 0/20. An attempt that does not reach the squat leaning
+// less than squatMaxLean, or that tilts beyond riseMaxTilt while rising, fails at once, so that
+// the motion engine retries within the 15 s instead of waiting out the settle time.
 // tests/getup_test.cpp stays 'pending'. The front key frames come from a cross-entropy search
 // (4 frames x 8 values + the squat, two trials per candidate, one a randomised robot) that
 // reached hands-and-feet with most of the weight on the feet but rarely the rise; the back
@@ -70,6 +73,8 @@ class GetUp {
     double settleTime = 1.3;      // s upright in the stand before the get-up is done
     double uprightTilt = 0.30;    // rad: upright below this (the fall detector's is 0.35)
     double settleMaxTime = 3.0;   // s: not upright by then = failed
+    double squatMaxLean = 1.3;    // rad: leaning more at the end of the front frames = failed
+    double riseMaxTilt = 1.3;     // rad: tilting more while rising = failed
     bool backRollsOver = true;    // the back sequence rolls onto the front (else it ends in backSquat)
     // Non-empty: these frames instead of the built-in ones (experiments); they end in the
     // frontSquat / backSquat posture.
