@@ -79,54 +79,14 @@ struct FrameTruth {
   std::vector<VisibleBall> balls3, balls5;
 };
 
-// The visible stretch of a line, clipped exactly at the image border: a point of the line's
-// centre counts where it is truly visible (in the image, unhidden, within maxDistance) and
-// the paint's whole width across the line there lies in the image (both edges): where the
-// border cuts the paint lengthwise, what is left is a sliver whose centre no image shows.
-// The longest such run of 2 cm samples, like visibleFeatures.
-std::optional<VisibleLine> clippedLine(const World& world, CameraId camera, const VisibleLine& seen, double maxDistance) {
-  const FieldModel& f = world.field();
-  const FieldLine& l = f.lines[seen.index];
-  const CameraResolution res = world.cameraResolution(camera);
-  const double len = (l.to - l.from).norm();
-  if (len < 1e-9) return std::nullopt;
-  const Eigen::Vector2d u = (l.to - l.from) / len, n(-u.y(), u.x());
-  const double half = 0.5 * f.dims.lineWidth;
-  auto inImage = [&](const Eigen::Vector2d& p) {
-    const auto px = truePixel(world, 0, camera, Eigen::Vector3d(p.x(), p.y(), 0.001));
-    return px && px->x() >= 0 && px->y() >= 0 && px->x() < res.width && px->y() < res.height;
-  };
-  const int count = std::max(2, static_cast<int>(len / 0.02) + 1);
-  int bestStart = -1, bestLen = 0, runStart = -1;
-  for (int k = 0; k <= count; ++k) {
-    bool vis = false;
-    if (k < count) {
-      const Eigen::Vector2d p = l.from + (l.to - l.from) * (static_cast<double>(k) / (count - 1));
-      vis = inImage(p + half * n) && inImage(p - half * n) &&
-            trulyVisible(world, 0, camera, Eigen::Vector3d(p.x(), p.y(), 0.001), maxDistance);
-    }
-    if (vis && runStart < 0) runStart = k;
-    if (!vis && runStart >= 0) {
-      if (k - runStart > bestLen) bestLen = k - runStart, bestStart = runStart;
-      runStart = -1;
-    }
-  }
-  if (bestLen < 2) return std::nullopt;
-  VisibleLine v = seen;
-  v.from = l.from + (l.to - l.from) * (static_cast<double>(bestStart) / (count - 1));
-  v.to = l.from + (l.to - l.from) * (static_cast<double>(bestStart + bestLen - 1) / (count - 1));
-  v.visibleLength = (v.to - v.from).norm();
-  v.imageFrom = *truePixel(world, 0, camera, Eigen::Vector3d(v.from.x(), v.from.y(), 0));
-  v.imageTo = *truePixel(world, 0, camera, Eigen::Vector3d(v.to.x(), v.to.y(), 0));
-  return v;
-}
-
 FrameTruth computeTruth(const World& world, CameraId camera) {
   FrameTruth t;
   const VisibleFeatures v4 = visibleFeatures(world, 0, camera, 4.0);
   for (const auto& l : v4.lines) {
     if (l.visibleLength < 0.5) continue;  // clipping only shortens the stretch
-    if (const auto c = clippedLine(world, camera, l, 4.0); c && c->visibleLength >= 0.5) t.lines.push_back(*c);
+    // Clipped exactly at the image border: the paint's whole width must be in the image.
+    if (const auto c = visibleStretch(world, 0, camera, l.index, 4.0, true); c && c->visibleLength >= 0.5)
+      t.lines.push_back(*c);
   }
   // The circle within 3 m.
   const FieldModel& f = world.field();

@@ -60,37 +60,50 @@ bool trulyVisible(const World& world, int robot, CameraId camera, const Eigen::V
   return visibleImpl(world, robot, camera, pField, maxDistance, "");
 }
 
+std::optional<VisibleLine> visibleStretch(const World& world, int robot, CameraId camera, int index,
+                                          double maxDistance, bool wholePaintWidth) {
+  const FieldModel& field = world.field();
+  const FieldLine& l = field.lines[index];
+  const double len = (l.to - l.from).norm();
+  if (len < 1e-9) return std::nullopt;
+  const Eigen::Vector2d across = 0.5 * field.dims.lineWidth * Eigen::Vector2d(-(l.to - l.from).y(), (l.to - l.from).x()) / len;
+  const CameraResolution res = world.cameraResolution(camera);
+  auto inImage = [&](const Eigen::Vector2d& p) {
+    const auto px = truePixel(world, robot, camera, Eigen::Vector3d(p.x(), p.y(), 0.001));
+    return px && px->x() >= 0 && px->y() >= 0 && px->x() < res.width && px->y() < res.height;
+  };
+  const int n = std::max(2, static_cast<int>(len / 0.02) + 1);
+  int bestStart = -1, bestLen = 0, runStart = -1;
+  for (int k = 0; k <= n; ++k) {
+    bool vis = false;
+    if (k < n) {
+      const Eigen::Vector2d p = l.from + (l.to - l.from) * (static_cast<double>(k) / (n - 1));
+      vis = (!wholePaintWidth || (inImage(p + across) && inImage(p - across))) &&
+            trulyVisible(world, robot, camera, Eigen::Vector3d(p.x(), p.y(), 0.001), maxDistance);
+    }
+    if (vis && runStart < 0) runStart = k;
+    if (!vis && runStart >= 0) {
+      if (k - runStart > bestLen) bestLen = k - runStart, bestStart = runStart;
+      runStart = -1;
+    }
+  }
+  if (bestLen < 2) return std::nullopt;
+  VisibleLine v;
+  v.index = index;
+  v.name = l.name;
+  v.from = l.from + (l.to - l.from) * (static_cast<double>(bestStart) / (n - 1));
+  v.to = l.from + (l.to - l.from) * (static_cast<double>(bestStart + bestLen - 1) / (n - 1));
+  v.visibleLength = (v.to - v.from).norm();
+  v.imageFrom = *truePixel(world, robot, camera, Eigen::Vector3d(v.from.x(), v.from.y(), 0));
+  v.imageTo = *truePixel(world, robot, camera, Eigen::Vector3d(v.to.x(), v.to.y(), 0));
+  return v;
+}
+
 VisibleFeatures visibleFeatures(const World& world, int robot, CameraId camera, double maxDistance) {
   VisibleFeatures out;
   const FieldModel& field = world.field();
-  for (int i = 0; i < static_cast<int>(field.lines.size()); ++i) {
-    const FieldLine& l = field.lines[i];
-    const double len = (l.to - l.from).norm();
-    const int n = std::max(2, static_cast<int>(len / 0.02) + 1);
-    int bestStart = -1, bestLen = 0, runStart = -1;
-    for (int k = 0; k <= n; ++k) {
-      bool vis = false;
-      if (k < n) {
-        const Eigen::Vector2d p = l.from + (l.to - l.from) * (static_cast<double>(k) / (n - 1));
-        vis = trulyVisible(world, robot, camera, Eigen::Vector3d(p.x(), p.y(), 0.001), maxDistance);
-      }
-      if (vis && runStart < 0) runStart = k;
-      if (!vis && runStart >= 0) {
-        if (k - runStart > bestLen) bestLen = k - runStart, bestStart = runStart;
-        runStart = -1;
-      }
-    }
-    if (bestLen < 2) continue;
-    VisibleLine v;
-    v.index = i;
-    v.name = l.name;
-    v.from = l.from + (l.to - l.from) * (static_cast<double>(bestStart) / (n - 1));
-    v.to = l.from + (l.to - l.from) * (static_cast<double>(bestStart + bestLen - 1) / (n - 1));
-    v.visibleLength = (v.to - v.from).norm();
-    v.imageFrom = *truePixel(world, robot, camera, Eigen::Vector3d(v.from.x(), v.from.y(), 0));
-    v.imageTo = *truePixel(world, robot, camera, Eigen::Vector3d(v.to.x(), v.to.y(), 0));
-    out.lines.push_back(v);
-  }
+  for (int i = 0; i < static_cast<int>(field.lines.size()); ++i)
+    if (auto v = visibleStretch(world, robot, camera, i, maxDistance)) out.lines.push_back(std::move(*v));
   for (const auto& x : field.intersections) {
     const Eigen::Vector3d p(x.position.x(), x.position.y(), 0.001);
     if (trulyVisible(world, robot, camera, p, maxDistance))

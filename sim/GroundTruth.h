@@ -52,6 +52,13 @@ std::optional<Eigen::Vector2d> truePixel(const World& world, int robot, CameraId
 bool trulyVisible(const World& world, int robot, CameraId camera, const Eigen::Vector3d& pField,
                   double maxDistance = 1e9);
 
+// The visible stretch of field line `index`: the longest run of its centre's 2 cm samples
+// that are truly visible. With wholePaintWidth a sample also needs both edges of the paint
+// across the line inside the image: where the border cuts the paint lengthwise, what is left
+// is a sliver whose centre no image shows.
+std::optional<VisibleLine> visibleStretch(const World& world, int robot, CameraId camera, int index,
+                                          double maxDistance, bool wholePaintWidth = false);
+
 // Everything in view of robot's camera within maxDistance. Lines are sampled every 2 cm;
 // a line's visible stretch is the longest run of visible samples.
 VisibleFeatures visibleFeatures(const World& world, int robot, CameraId camera, double maxDistance = 1e9);

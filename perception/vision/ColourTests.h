@@ -133,11 +133,11 @@ inline bool uninformative(const PixelColour& comparison, const FieldReference& f
 }
 
 // The paper's white test of one sample point against one comparison point beside it: the
-// sample is clearly brighter and less saturated than the comparison point, bright and grey
-// enough in itself, and the comparison point is field.
-inline bool whitePair(const PixelColour& sample, const PixelColour& comparison, const FieldReference& field) {
-  const double dy = sample.y - comparison.y;
-  if (dy < std::max(6.0, 0.18 * comparison.y)) return false;
+// sample is clearly brighter (by at least minContrast) and less saturated than the comparison
+// point, bright and grey enough in itself, and the comparison point is field.
+inline bool whitePair(const PixelColour& sample, const PixelColour& comparison, const FieldReference& field,
+                      double minContrast) {
+  if (sample.y - comparison.y < minContrast) return false;
   // Saturation per unit luminance (YHS2's saturation is relative to brightness too): a line in
   // a shadow lit by the blue sky has more chroma than the dark grass beside it, but far less
   // for its luminance.
@@ -148,6 +148,11 @@ inline bool whitePair(const PixelColour& sample, const PixelColour& comparison, 
   // Sunlit grass beside a shadow is brighter, and no greyer for its luminance; it is still grass.
   if (field.isField(sample) && field.relSat(sample) > 0.5 * field.fieldRelSatPerY * sample.y) return false;
   return true;
+}
+
+// The usual contrast: 18 % of the comparison point's luminance.
+inline bool whitePair(const PixelColour& sample, const PixelColour& comparison, const FieldReference& field) {
+  return whitePair(sample, comparison, field, std::max(6.0, 0.18 * comparison.y));
 }
 
 }  // namespace nao::vision

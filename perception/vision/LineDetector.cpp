@@ -251,12 +251,7 @@ double lineContrast(double fieldLuminance) {
 // paper's: brighter and less saturated than the comparison point, which is field), with the
 // contrast above.
 bool lineWhitePair(const PixelColour& sample, const PixelColour& comparison, const FieldReference& field) {
-  if (whitePair(sample, comparison, field)) return true;
-  if (sample.y - comparison.y < lineContrast(comparison.y)) return false;
-  if (field.relSat(sample) / std::max(1.0, sample.y) >= field.relSat(comparison) / std::max(1.0, comparison.y))
-    return false;
-  if (sample.y < field.yMin || !field.isField(comparison, 0.15)) return false;
-  return !(field.isField(sample) && field.relSat(sample) > 0.5 * field.fieldRelSatPerY * sample.y);
+  return whitePair(sample, comparison, field, lineContrast(comparison.y));
 }
 
 }  // namespace
