@@ -33,6 +33,8 @@ nlohmann::json resultJson(const VisionResult& r, const CameraImage& img, const s
   const FieldColour& fc = r.regions.fieldColour;
   j["field_colour"] = {{"valid", fc.valid}, {"hue_min", fc.hueMin}, {"hue_max", fc.hueMax}, {"sat_min", fc.satMin},
                        {"y_min", fc.yMin},  {"y_max", fc.yMax},    {"mean_y", fc.meanY},   {"mean_s", fc.meanS}};
+  // The sensor's clipping level where wide areas are clipped (their regions are "unknown").
+  j["saturation_level"] = r.regions.saturationLevel >= 0 ? nlohmann::json(r.regions.saturationLevel) : nlohmann::json();
   std::map<std::string, int> counts;
   for (const auto* lines : {&r.regions.vertical, &r.regions.horizontal})
     for (const auto& sl : *lines)

@@ -147,10 +147,12 @@ int evalWalkToCommand(const Args& args) {
   nlohmann::json per = nlohmann::json::array();
   for (const auto& t : r.trials)
     per.push_back({{"reached", t.reached},
+                   {"target", {t.target.x, t.target.y, t.target.theta / kDeg}},
                    {"time_s", t.time},
                    {"position_error_m", t.positionError},
                    {"angle_error_deg", t.angleError / kDeg},
                    {"odometry_position_error_m", t.odometryPositionError},
+                   {"odometry_offset_m", {t.odometryOffset.x(), t.odometryOffset.y()}},
                    {"odometry_angle_error_deg", t.odometryAngleError / kDeg},
                    {"control_position_error_m", t.controlPositionError},
                    {"control_angle_error_deg", t.controlAngleError / kDeg},

@@ -222,9 +222,12 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
       break;
     }
     case State::Falling: {
+      // Held through the impact: "fallen" (48 deg of tilt) comes a few cycles after
+      // "falling", well before the robot hits the ground.
       out.position = safeFallPosture(frame.joints.position, fall.direction);
       out.stiffness.fill(0.5);
-      if (fall.fallen) enter(State::Lying, frame);
+      if (fall.fallen && (frame.inertial.gyroscope.norm() < 0.5 || frame.time - fall.fallTime > 1.0))
+        enter(State::Lying, frame);
       break;
     }
     case State::Lying: {

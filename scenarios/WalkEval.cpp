@@ -290,6 +290,7 @@ WalkToResult runWalkTo(const WalkToOptions& o) {
     }
   }
   r.time = sim.time() - startTime;
+  r.target = o.target;
   const Eigen::Vector3d truth = relativeTo(start, sim.truePose());
   r.positionError = std::hypot(truth.x() - o.target.x, truth.y() - o.target.y);
   r.angleError = std::abs(Pose2::wrap(truth.z() - o.target.theta));

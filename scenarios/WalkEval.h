@@ -151,6 +151,7 @@ struct WalkToOptions {
 };
 
 struct WalkToResult {
+  Pose2 target;               // relative to the start
   bool reached = false;       // the engine reported the target reached before the time limit
   double time = 0;            // s until then
   double positionError = 0;   // m, ground truth

@@ -11,7 +11,11 @@
 #include "controllers/GetUp.h"
 #include "controllers/Kinematics.h"
 #include "robot/ForwardKinematics.h"
+#include "robot/Blackboard.h"
+#include "robot/JointRequest.h"
 #include "scenarios/GetUpEval.h"
+#include "scenarios/WalkEval.h"
+#include "sim/World.h"
 
 namespace nao {
 namespace {
@@ -58,6 +62,56 @@ TEST(Fall, FallsTheWayItIsPushedAndStartsGettingUp) {
     std::printf("%s: fell that way %d, %d get-up attempts\n", fallDirectionName(side), r.fellOnRequestedSide, r.attempts);
     EXPECT_TRUE(r.fellOnRequestedSide);
     EXPECT_GE(r.attempts, 1);
+  }
+}
+
+
+// The safe fall, against the simulator's truth: pushed over from the stand, the robot knows it
+// is falling while its torso is still high (0.1 s or more before it lies), and from then until
+// it lies its joints are soft (stiffness <= 0.5) with the arms where they catch the fall:
+// forward when falling forward, along the body when falling backward, the head turned away
+// from the impact.
+TEST(Fall, DetectsTheFallEarlyAndFallsSoftWithTheArmsOut) {
+  for (FallDirection side : {FallDirection::Front, FallDirection::Back}) {
+    SCOPED_TRACE(fallDirectionName(side));
+    sim::MotionSimOptions so;
+    so.seed = 11;
+    sim::MotionSim sim(so);
+    const MotionRequest stand;
+    for (int i = 0; i < static_cast<int>((so.params.transitionTime + 0.5) / 0.012); ++i) ASSERT_TRUE(sim.cycle(stand));
+    const double standingZ = sim.world().torsoPose(0).translation().z();
+    const bool front = side == FallDirection::Front;
+    const double heading = sim.truePose().z() + (front ? 0.0 : M_PI);
+    sim.world().pushRobot(0, 8.0 * Eigen::Vector3d(std::cos(heading), std::sin(heading), 0));
+    double detectedAt = -1, detectedZ = 0, lyingAt = -1;
+    int softCycles = 0, softFailures = 0, armFailures = 0;
+    for (int i = 0; i < static_cast<int>(3.0 / 0.012) && lyingAt < 0; ++i) {
+      ASSERT_TRUE(sim.cycle(stand));
+      const FallState& fall = sim.fallState();
+      if (detectedAt < 0 && (fall.falling || fall.fallen)) {
+        detectedAt = sim.time();
+        detectedZ = sim.world().torsoPose(0).translation().z();
+        EXPECT_EQ(fall.direction, side);
+      }
+      if (sim.trueFallen() && sim.world().torsoPose(0).translation().z() < 0.15) lyingAt = sim.time();
+      if (detectedAt < 0 || lyingAt >= 0) continue;
+      // Falling, until the impact: what the motion engine asks of the joints.
+      const JointRequest& request = sim.program().blackboard().read<JointRequest>();
+      ++softCycles;
+      softFailures += *std::max_element(request.stiffness.begin(), request.stiffness.end()) > 0.5;
+      const double shoulders = 0.5 * (request.position[LShoulderPitch] + request.position[RShoulderPitch]);
+      armFailures += front ? !(shoulders < 0.5 && request.position[HeadPitch] < 0)
+                           : !(shoulders > 1.2 && request.position[HeadPitch] > 0);
+    }
+    std::printf("%s: detected %.2f s before lying, torso %.2f m high then (%.2f standing); %d falling cycles\n",
+                fallDirectionName(side), lyingAt - detectedAt, detectedZ, standingZ, softCycles);
+    ASSERT_GT(detectedAt, 0);
+    ASSERT_GT(lyingAt, 0);
+    EXPECT_GE(lyingAt - detectedAt, 0.09);  // 8 cycles or more
+    EXPECT_GT(detectedZ, 0.6 * standingZ);
+    EXPECT_GE(softCycles, 5);
+    EXPECT_EQ(softFailures, 0);
+    EXPECT_EQ(armFailures, 0);
   }
 }
 

@@ -81,7 +81,8 @@ FieldBoundary detectFieldBoundary(const CameraImage& image, const ScanLineRegion
   const double W = image.width, H = image.height;
 
   // The candidate point of each vertical line: where the running score from the bottom
-  // (+ field, - other, white neutral: lines lie on the field) peaks.
+  // (+ field, - other; white neutral: lines lie on the field; saturated (unknown) neutral:
+  // no colour to go by) peaks.
   std::vector<Point> pts;
   for (const ScanLine& line : regions.vertical) {
     double s = 0, best = 0;
@@ -89,7 +90,7 @@ FieldBoundary detectFieldBoundary(const CameraImage& image, const ScanLineRegion
     for (auto it = line.regions.rbegin(); it != line.regions.rend(); ++it) {
       const int len = it->to - it->from;
       if (it->cls == RegionClass::Field) s += len;
-      else if (it->cls != RegionClass::White) s -= len;
+      else if (it->cls == RegionClass::Other) s -= len;
       if (s > best) best = s, bestY = it->from;
     }
     if (bestY < 0 || best < 2) continue;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 #include "perception/vision/FieldBoundaryDetector.h"
@@ -34,6 +35,17 @@ constexpr double kThinSet = 3.0;           // regions on average shorter than th
 constexpr int kHueMargin = 6;              // YHS2 hue units added to the found range
 constexpr double kThickWhite = 3.0;        // a region this many line sizes long is no line (across it)
 constexpr double kPaleRatio = 0.5;         // pale field: at least this fraction of the field's chroma / luminance
+// Sensor saturation: where the sensor clips, every channel reads the same maximum and
+// colourless samples pile up at one luminance (a spike in the histogram, not a hump).
+constexpr float kSaturatedChroma = 4.0f;   // colourless: chroma below this
+constexpr double kSaturatedShare = 0.03;   // the spike holds at least this share of the scanned area
+constexpr double kSaturatedSpike = 4.0;    // ... and this many times what lies just beside it
+constexpr int kSaturatedMinY = 128;
+constexpr float kSaturatedTolerance = 2.0f;  // luminance units about the level (sensor noise)
+constexpr int kSaturatedCrossings = 2;       // a core crosses this many long saturated stretches
+constexpr int kSurfaceCrossings = 12;        // a saturated surface holds this many crossings
+constexpr int kSaturatedReach = 10;          // steps from a core over its blurred edges
+constexpr float kSaturatedLineThick = 2.0f;  // line sizes: thinner between field is a line, clipped or not
 // White.
 constexpr double kWhiteGain = 0.2;         // at least this much brighter than the field's median
 constexpr double kWhiteRatio = 0.8;        // chroma / luminance below this fraction of the field's
@@ -138,6 +150,7 @@ class Regionizer {
       findWhitePoint(out, out.fieldColour);
       classifyWhite(out.vertical, 0, out.fieldColour);
       classifyWhite(out.horizontal, verticalCount_, out.fieldColour);
+      markSaturated(out);
     } else {
       for (auto* lines : {&out.vertical, &out.horizontal})
         for (ScanLine& line : *lines)
@@ -620,6 +633,176 @@ class Regionizer {
     }
   }
 
+  // Sensor-saturated stretches much longer than a line is thick carry no colour: a sunlit
+  // carpet, a window, a robot's chest in glare look alike there. They are left Unknown --
+  // neither field nor white, so no line spot, ball edge or field colour comes from them.
+  // The saturation level is THIS image's: the luminance at which colourless regions pile up
+  // (3 % of the scanned area or more within +-1, four times the area just beside it). A
+  // white line clipped at the same level is thin and stays white.
+  void markSaturated(ScanLineRegions& out) {
+    std::array<double, 256> hist{};
+    double total = 0;
+    auto collect = [&](const std::vector<ScanLine>& lines, std::size_t g, const std::vector<char>* extra) {
+      for (std::size_t l = 0; l < lines.size(); ++l) {
+        if (!(extra && (*extra)[l]))
+          for (std::size_t k = 0; k < lines[l].regions.size(); ++k) {
+            const RegionStats& s = stats_[g + k];
+            total += s.area;
+            if (s.chroma < kSaturatedChroma) hist[std::clamp(static_cast<int>(std::lround(s.y)), 0, 255)] += s.area;
+          }
+        g += lines[l].regions.size();
+      }
+    };
+    collect(out.vertical, 0, nullptr);
+    collect(out.horizontal, verticalCount_, &hExtra_);
+    if (total <= 0) return;
+    auto band = [&](int from, int to) {
+      double a = 0;
+      for (int v = std::max(0, from); v <= std::min(255, to); ++v) a += hist[v];
+      return a;
+    };
+    int level = -1;
+    double peak = 0;
+    for (int v = kSaturatedMinY; v < 256; ++v)
+      if (band(v - 1, v + 1) > peak) peak = band(v - 1, v + 1), level = v;
+    if (level < 0 || peak < kSaturatedShare * total) return;
+    const double beside = band(level - 8, level - 2) + band(level + 2, level + 8);
+    if (peak < kSaturatedSpike * beside) return;
+    double sum = 0;
+    for (int v = level - 1; v <= std::min(255, level + 1); ++v) sum += v * hist[v];
+    const float clip = static_cast<float>(sum / peak);
+    out.saturationLevel = static_cast<int>(std::lround(clip));
+    // Saturated: (nearly) colourless at the level. A core: a saturated stretch much longer than
+    // a line is thick, crossed by at least kSaturatedCrossings such stretches of the other scan
+    // direction -- an area clipped in 2-D, not a clipped line (a line seen lengthwise is long
+    // one way only; two lines meeting in an L cross once). Cores count only in a saturated
+    // surface: a big united set with many crossings and a colourless mean at the level.
+    const auto nearlySaturated = [&](const RegionStats& s) {
+      return s.chroma < 2 * kSaturatedChroma && std::abs(s.y - clip) <= 3 * kSaturatedTolerance;
+    };
+    // (Nearly: a long stretch's mean comes from a dozen samples, some of them in the blurred
+    // edges of small shadows it runs through.)
+    const auto longSaturated = [&](std::size_t i) {
+      return nearlySaturated(stats_[i]) && stats_[i].thick > kThickWhite;
+    };
+    // The index (into stats_) of the region of a line that covers position q, or -1.
+    const auto regionAt = [](const ScanLine& line, std::size_t first, int q) -> long {
+      const auto& rs = line.regions;
+      auto it = std::upper_bound(rs.begin(), rs.end(), q, [](int v, const ScanRegion& r) { return v < r.from; });
+      if (it == rs.begin()) return -1;
+      --it;
+      return q < it->to ? static_cast<long>(first + (it - rs.begin())) : -1;
+    };
+    std::vector<std::size_t> firstV(out.vertical.size()), firstH(out.horizontal.size());
+    for (std::size_t l = 0, g = 0; l < out.vertical.size(); g += out.vertical[l++].regions.size()) firstV[l] = g;
+    for (std::size_t l = 0, g = verticalCount_; l < out.horizontal.size(); g += out.horizontal[l++].regions.size())
+      firstH[l] = g;
+    std::vector<std::uint16_t> crossings(stats_.size(), 0);
+    for (std::size_t h = 0; h < out.horizontal.size(); ++h) {
+      if (hExtra_[h]) continue;
+      for (std::size_t v = 0; v < out.vertical.size(); ++v) {
+        const long a = regionAt(out.vertical[v], firstV[v], out.horizontal[h].coord);
+        const long b = regionAt(out.horizontal[h], firstH[h], out.vertical[v].coord);
+        if (a < 0 || b < 0 || !longSaturated(a) || !longSaturated(b)) continue;
+        ++crossings[a], ++crossings[b];
+      }
+    }
+    // Per set: the area of its core and the crossings in it (about its clipped area in units
+    // of a line's width x a line's height: a few where two lines meet, dozens for a sunlit
+    // stripe).
+    std::vector<double> coreArea(stats_.size(), 0);
+    std::vector<int> setCrossings(stats_.size(), 0);
+    std::vector<char> core(stats_.size(), 0);
+    for (std::size_t i = 0; i < stats_.size(); ++i)
+      if (crossings[i] >= kSaturatedCrossings) {
+        core[i] = 1;
+        const int root = find(static_cast<int>(i));
+        coreArea[root] += stats_[i].area;
+        if (i < verticalCount_) setCrossings[root] += crossings[i];  // each crossing once
+      }
+    std::vector<char> surface(stats_.size(), 0);
+    for (std::size_t i = 0; i < stats_.size(); ++i)
+      surface[i] = coreArea[i] >= kBigSetFraction * total && setCrossings[i] >= kSurfaceCrossings &&
+                   nearlySaturated(sets_[i].mean());
+    // Core regions outside a surface are left alone too: a lone clipped junction of lines.
+    for (std::size_t i = 0; i < stats_.size(); ++i) core[i] = core[i] && surface[find(static_cast<int>(i))];
+    // The cores are Unknown, and so is what reaches a core in a few steps across neighbouring
+    // scan lines of the same direction or along a line (the surface's partly clipped, blurred
+    // edges), unless it is field or line-sized between field on both sides. Not the whole
+    // united set: a clipped line or goal post is united with a clipped surface it touches
+    // somewhere, and would be lost all along.
+    std::vector<char> reached(core);
+    const auto canReach = [&](std::size_t g, const ScanLine& line, std::size_t k) {
+      const ScanRegion& r = line.regions[k];
+      if (reached[g] || r.cls == RegionClass::Field || r.cls == RegionClass::Other) return false;
+      const bool between = k > 0 && k + 1 < line.regions.size() && line.regions[k - 1].cls == RegionClass::Field &&
+                           line.regions[k + 1].cls == RegionClass::Field;
+      return !(between && stats_[g].thick < kSaturatedLineThick);
+    };
+    for (int step = 0; step < kSaturatedReach; ++step) {
+      std::vector<char> next(reached);
+      auto spread = [&](std::vector<ScanLine>& lines, const std::vector<std::size_t>& first, bool horizontal) {
+        for (std::size_t l = 0; l < lines.size(); ++l) {
+          const ScanLine& a = lines[l];
+          for (std::size_t i = 0; i + 1 < a.regions.size(); ++i) {  // along the line
+            const std::size_t g = first[l] + i;
+            if (reached[g] && canReach(g + 1, a, i + 1)) next[g + 1] = 1;
+            if (reached[g + 1] && canReach(g, a, i)) next[g] = 1;
+          }
+          if (l + 1 >= lines.size() || (horizontal && (hExtra_[l] || hExtra_[l + 1]))) continue;
+          const ScanLine& b = lines[l + 1];  // across to the next line: overlapping regions
+          std::size_t i = 0, k = 0;
+          while (i < a.regions.size() && k < b.regions.size()) {
+            const std::size_t ga = first[l] + i, gb = first[l + 1] + k;
+            if (reached[ga] && canReach(gb, b, k)) next[gb] = 1;
+            if (reached[gb] && canReach(ga, a, i)) next[ga] = 1;
+            if (a.regions[i].to < b.regions[k].to) ++i;
+            else ++k;
+          }
+        }
+      };
+      spread(out.vertical, firstV, false);
+      spread(out.horizontal, firstH, true);
+      reached.swap(next);
+    }
+    for (auto* lines : {&out.vertical, &out.horizontal}) {
+      std::size_t g = lines == &out.vertical ? 0 : verticalCount_;
+      for (ScanLine& line : *lines)
+        for (ScanRegion& r : line.regions)
+          if (reached[g++]) r.cls = RegionClass::Unknown;
+    }
+    // The extra rows are in no united set and cross nothing counted: a long saturated stretch
+    // on one is Unknown where the vertical line through its middle says so.
+    for (std::size_t h = 0; h < out.horizontal.size(); ++h) {
+      if (!hExtra_[h]) continue;
+      ScanLine& row = out.horizontal[h];
+      for (std::size_t k = 0; k < row.regions.size(); ++k) {
+        ScanRegion& r = row.regions[k];
+        if (!longSaturated(firstH[h] + k)) continue;
+        const int mid = (r.from + r.to) / 2;
+        for (const ScanLine& v : out.vertical) {
+          if (v.coord < r.from || v.coord >= r.to || std::abs(v.coord - mid) > (r.to - r.from) / 4) continue;
+          const long a = regionAt(v, firstV[&v - out.vertical.data()], row.coord);
+          if (a >= 0 && v.regions[a - firstV[&v - out.vertical.data()]].cls == RegionClass::Unknown) {
+            r.cls = RegionClass::Unknown;
+            break;
+          }
+        }
+      }
+    }
+    // The blur between a saturated stretch and the field (a shadow's soft edge) is brighter
+    // and greyer than the field, so it passed as white; it is saturated light mixed in.
+    for (auto* lines : {&out.vertical, &out.horizontal})
+      for (ScanLine& line : *lines) {
+        auto& rs = line.regions;
+        for (std::size_t k = 0; k < rs.size(); ++k) {
+          if (rs[k].cls != RegionClass::Unknown) continue;
+          for (std::size_t j = k + 1; j < rs.size() && rs[j].cls == RegionClass::White; ++j) rs[j].cls = RegionClass::Unknown;
+          for (std::size_t j = k; j-- > 0 && rs[j].cls == RegionClass::White;) rs[j].cls = RegionClass::Unknown;
+        }
+      }
+  }
+
   // Same-class neighbours merge; small gaps between field and white are split between them.
   void cleanup(std::vector<ScanLine>& lines, bool vertical) {
     for (ScanLine& line : lines) {
@@ -737,6 +920,7 @@ ScanLineRegions cutAtBoundary(const ScanLineRegions& regions, const FieldBoundar
   ScanLineRegions out;
   out.camera = regions.camera;
   out.fieldColour = regions.fieldColour;
+  out.saturationLevel = regions.saturationLevel;
   if (!boundary.valid) {
     out.vertical = regions.vertical;
     out.horizontal = regions.horizontal;

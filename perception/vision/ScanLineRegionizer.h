@@ -23,6 +23,14 @@
 //    than the field, or -- where sun and shadow defeat global thresholds -- clearly brighter
 //    and greyer than the field regions beside it. A region much longer than a line is thick,
 //    in the field's hue with half its chroma or more, is field (a washed-out sunlit patch).
+// 3b. Sensor saturation: where the sensor clips, R = G = B at one level and colourless
+//    regions pile up at one luminance -- a spike in the histogram that gives THIS image's
+//    clipping level (213 in real image 00159, 255 in the simulator's bright light). A clipped
+//    area (long saturated stretches crossing each other on both scan directions, in a big
+//    colourless united set) and its blurred edges are left Unknown: no colour, so neither
+//    field nor white, and no line spot or field colour comes from it. A clipped line stays
+//    white (long one way only), and so does a clipped goal post or robot that merely touches a
+//    clipped area. The field boundary takes Unknown as neutral, as it takes white.
 // 4. Cleanup: white specks much thinner than a line between field are field; same-class
 //    neighbours on a line merge; small gaps between a field and a white region are split
 //    between them.

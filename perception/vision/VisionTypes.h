@@ -20,6 +20,7 @@ struct Yhs {
   std::uint8_t y = 0, h = 0, s = 0;
 };
 
+// Unknown after classification: sensor-saturated, no colour to go by (ScanLineRegionizer.h).
 enum class RegionClass : std::uint8_t { Unknown, Field, White, Other };
 
 // A run of similar pixels on one scan line.
@@ -80,6 +81,7 @@ struct ScanLineRegions {
   CameraId camera = CameraId::Top;
   std::vector<ScanLine> vertical, horizontal;
   FieldColour fieldColour;
+  int saturationLevel = -1;  // luminance at which this image's sensor clips, if it does over wide areas
 };
 
 struct LinesPercept {
