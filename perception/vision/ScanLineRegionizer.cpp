@@ -633,30 +633,53 @@ class Regionizer {
     }
   }
 
-  // Sensor-saturated stretches much longer than a line is thick carry no colour: a sunlit
-  // carpet, a window, a robot's chest in glare look alike there. They are left Unknown --
-  // neither field nor white, so no line spot, ball edge or field colour comes from them.
-  // The saturation level is THIS image's: the luminance at which colourless regions pile up
-  // (3 % of the scanned area or more within +-1, four times the area just beside it). A
-  // white line clipped at the same level is thin and stays white.
+  // --- Sensor saturation (ScanLineRegionizer.h, step 3b) -------------------------------------
+  // Clipped areas carry no colour: a sunlit carpet, a window, a robot's chest in glare look
+  // alike there. They are left Unknown -- neither field nor white -- so that no line spot and
+  // no field colour comes from them.
   void markSaturated(ScanLineRegions& out) {
-    std::array<double, 256> hist{};
     double total = 0;
-    auto collect = [&](const std::vector<ScanLine>& lines, std::size_t g, const std::vector<char>* extra) {
-      for (std::size_t l = 0; l < lines.size(); ++l) {
-        if (!(extra && (*extra)[l]))
-          for (std::size_t k = 0; k < lines[l].regions.size(); ++k) {
-            const RegionStats& s = stats_[g + k];
-            total += s.area;
-            if (s.chroma < kSaturatedChroma) hist[std::clamp(static_cast<int>(std::lround(s.y)), 0, 255)] += s.area;
-          }
-        g += lines[l].regions.size();
+    const float clip = saturationLevel(out, total);
+    if (clip < 0) return;
+    out.saturationLevel = static_cast<int>(std::lround(clip));
+    indexLines(out);
+    std::vector<char> unknown = saturatedCores(out, clip, total);
+    spreadOverEdges(out, unknown);
+    std::size_t g = 0;
+    for (auto* lines : {&out.vertical, &out.horizontal})
+      for (ScanLine& line : *lines)
+        for (ScanRegion& r : line.regions)
+          if (unknown[g++]) r.cls = RegionClass::Unknown;
+    markExtraRows(out, clip);
+    mergeBlurIntoUnknown(out);
+  }
+
+  // (Nearly) colourless at the clipping level. Nearly: a long stretch's mean comes from a
+  // dozen samples, some of them in the blurred edges of small shadows it runs through.
+  static bool nearlySaturated(const RegionStats& s, float clip) {
+    return s.chroma < 2 * kSaturatedChroma && std::abs(s.y - clip) <= 3 * kSaturatedTolerance;
+  }
+  static bool longSaturated(const RegionStats& s, float clip) { return nearlySaturated(s, clip) && s.thick > kThickWhite; }
+
+  // THIS image's clipping level: the luminance at which colourless regions pile up (3 % of the
+  // scanned area or more within +-1, four times the area just beside it); -1 if none. total:
+  // the scanned area (extra rows left out, as in the colour statistics).
+  float saturationLevel(const ScanLineRegions& out, double& total) const {
+    std::array<double, 256> hist{};
+    total = 0;
+    std::size_t g = 0;
+    for (const auto* lines : {&out.vertical, &out.horizontal})
+      for (std::size_t l = 0; l < lines->size(); ++l) {
+        const bool extra = lines == &out.horizontal && hExtra_[l];
+        for (std::size_t k = 0; k < (*lines)[l].regions.size(); ++k, ++g) {
+          if (extra) continue;
+          const RegionStats& s = stats_[g];
+          total += s.area;
+          if (s.chroma < kSaturatedChroma) hist[std::clamp(static_cast<int>(std::lround(s.y)), 0, 255)] += s.area;
+        }
       }
-    };
-    collect(out.vertical, 0, nullptr);
-    collect(out.horizontal, verticalCount_, &hExtra_);
-    if (total <= 0) return;
-    auto band = [&](int from, int to) {
+    if (total <= 0) return -1;
+    const auto band = [&](int from, int to) {
       double a = 0;
       for (int v = std::max(0, from); v <= std::min(255, to); ++v) a += hist[v];
       return a;
@@ -665,73 +688,73 @@ class Regionizer {
     double peak = 0;
     for (int v = kSaturatedMinY; v < 256; ++v)
       if (band(v - 1, v + 1) > peak) peak = band(v - 1, v + 1), level = v;
-    if (level < 0 || peak < kSaturatedShare * total) return;
-    const double beside = band(level - 8, level - 2) + band(level + 2, level + 8);
-    if (peak < kSaturatedSpike * beside) return;
+    if (level < 0 || peak < kSaturatedShare * total) return -1;
+    if (peak < kSaturatedSpike * (band(level - 8, level - 2) + band(level + 2, level + 8))) return -1;
     double sum = 0;
     for (int v = level - 1; v <= std::min(255, level + 1); ++v) sum += v * hist[v];
-    const float clip = static_cast<float>(sum / peak);
-    out.saturationLevel = static_cast<int>(std::lround(clip));
-    // Saturated: (nearly) colourless at the level. A core: a saturated stretch much longer than
-    // a line is thick, crossed by at least kSaturatedCrossings such stretches of the other scan
-    // direction -- an area clipped in 2-D, not a clipped line (a line seen lengthwise is long
-    // one way only; two lines meeting in an L cross once). Cores count only in a saturated
-    // surface: a big united set with many crossings and a colourless mean at the level.
-    const auto nearlySaturated = [&](const RegionStats& s) {
-      return s.chroma < 2 * kSaturatedChroma && std::abs(s.y - clip) <= 3 * kSaturatedTolerance;
-    };
-    // (Nearly: a long stretch's mean comes from a dozen samples, some of them in the blurred
-    // edges of small shadows it runs through.)
-    const auto longSaturated = [&](std::size_t i) {
-      return nearlySaturated(stats_[i]) && stats_[i].thick > kThickWhite;
-    };
-    // The index (into stats_) of the region of a line that covers position q, or -1.
-    const auto regionAt = [](const ScanLine& line, std::size_t first, int q) -> long {
-      const auto& rs = line.regions;
-      auto it = std::upper_bound(rs.begin(), rs.end(), q, [](int v, const ScanRegion& r) { return v < r.from; });
-      if (it == rs.begin()) return -1;
-      --it;
-      return q < it->to ? static_cast<long>(first + (it - rs.begin())) : -1;
-    };
-    std::vector<std::size_t> firstV(out.vertical.size()), firstH(out.horizontal.size());
-    for (std::size_t l = 0, g = 0; l < out.vertical.size(); g += out.vertical[l++].regions.size()) firstV[l] = g;
+    return static_cast<float>(sum / peak);
+  }
+
+  // Where each line's regions start in stats_.
+  void indexLines(const ScanLineRegions& out) {
+    firstV_.assign(out.vertical.size(), 0);
+    firstH_.assign(out.horizontal.size(), 0);
+    for (std::size_t l = 0, g = 0; l < out.vertical.size(); g += out.vertical[l++].regions.size()) firstV_[l] = g;
     for (std::size_t l = 0, g = verticalCount_; l < out.horizontal.size(); g += out.horizontal[l++].regions.size())
-      firstH[l] = g;
+      firstH_[l] = g;
+  }
+
+  // The index (into stats_) of the region of a line that covers position q, or -1.
+  static long regionAt(const ScanLine& line, std::size_t first, int q) {
+    const auto& rs = line.regions;
+    auto it = std::upper_bound(rs.begin(), rs.end(), q, [](int v, const ScanRegion& r) { return v < r.from; });
+    if (it == rs.begin()) return -1;
+    --it;
+    return q < it->to ? static_cast<long>(first + (it - rs.begin())) : -1;
+  }
+
+  // Per region: a core of a saturated surface. A core is a long saturated stretch crossed by
+  // at least kSaturatedCrossings long saturated stretches of the other scan direction -- an
+  // area clipped in 2-D, not a clipped line (a line seen lengthwise is long one way only; two
+  // lines meeting in an L cross once). Cores count only in a saturated surface: a big united
+  // set with many crossings (about its clipped area in units of a line's width x a line's
+  // height: a few where two lines meet, dozens for a sunlit stripe) and a colourless mean at
+  // the level.
+  std::vector<char> saturatedCores(const ScanLineRegions& out, float clip, double total) {
     std::vector<std::uint16_t> crossings(stats_.size(), 0);
     for (std::size_t h = 0; h < out.horizontal.size(); ++h) {
       if (hExtra_[h]) continue;
       for (std::size_t v = 0; v < out.vertical.size(); ++v) {
-        const long a = regionAt(out.vertical[v], firstV[v], out.horizontal[h].coord);
-        const long b = regionAt(out.horizontal[h], firstH[h], out.vertical[v].coord);
-        if (a < 0 || b < 0 || !longSaturated(a) || !longSaturated(b)) continue;
+        const long a = regionAt(out.vertical[v], firstV_[v], out.horizontal[h].coord);
+        const long b = regionAt(out.horizontal[h], firstH_[h], out.vertical[v].coord);
+        if (a < 0 || b < 0 || !longSaturated(stats_[a], clip) || !longSaturated(stats_[b], clip)) continue;
         ++crossings[a], ++crossings[b];
       }
     }
-    // Per set: the area of its core and the crossings in it (about its clipped area in units
-    // of a line's width x a line's height: a few where two lines meet, dozens for a sunlit
-    // stripe).
     std::vector<double> coreArea(stats_.size(), 0);
     std::vector<int> setCrossings(stats_.size(), 0);
     std::vector<char> core(stats_.size(), 0);
-    for (std::size_t i = 0; i < stats_.size(); ++i)
-      if (crossings[i] >= kSaturatedCrossings) {
-        core[i] = 1;
-        const int root = find(static_cast<int>(i));
-        coreArea[root] += stats_[i].area;
-        if (i < verticalCount_) setCrossings[root] += crossings[i];  // each crossing once
-      }
-    std::vector<char> surface(stats_.size(), 0);
-    for (std::size_t i = 0; i < stats_.size(); ++i)
-      surface[i] = coreArea[i] >= kBigSetFraction * total && setCrossings[i] >= kSurfaceCrossings &&
-                   nearlySaturated(sets_[i].mean());
-    // Core regions outside a surface are left alone too: a lone clipped junction of lines.
-    for (std::size_t i = 0; i < stats_.size(); ++i) core[i] = core[i] && surface[find(static_cast<int>(i))];
-    // The cores are Unknown, and so is what reaches a core in a few steps across neighbouring
-    // scan lines of the same direction or along a line (the surface's partly clipped, blurred
-    // edges), unless it is field or line-sized between field on both sides. Not the whole
-    // united set: a clipped line or goal post is united with a clipped surface it touches
-    // somewhere, and would be lost all along.
-    std::vector<char> reached(core);
+    for (std::size_t i = 0; i < stats_.size(); ++i) {
+      if (crossings[i] < kSaturatedCrossings) continue;
+      core[i] = 1;
+      const int root = find(static_cast<int>(i));
+      coreArea[root] += stats_[i].area;
+      if (i < verticalCount_) setCrossings[root] += crossings[i];  // each crossing once
+    }
+    for (std::size_t i = 0; i < stats_.size(); ++i) {
+      const std::size_t root = static_cast<std::size_t>(find(static_cast<int>(i)));
+      core[i] = core[i] && coreArea[root] >= kBigSetFraction * total && setCrossings[root] >= kSurfaceCrossings &&
+                nearlySaturated(sets_[root].mean(), clip);
+    }
+    return core;
+  }
+
+  // From the cores, kSaturatedReach steps along a line and across to the neighbouring lines of
+  // the same direction (overlapping regions): the surface's partly clipped, blurred edges.
+  // Field and other regions stop it, and so does what is line-sized between field on both
+  // sides. Not the whole united set: a clipped line or goal post is united with a clipped
+  // surface it touches somewhere, and would be lost all along.
+  void spreadOverEdges(const ScanLineRegions& out, std::vector<char>& reached) const {
     const auto canReach = [&](std::size_t g, const ScanLine& line, std::size_t k) {
       const ScanRegion& r = line.regions[k];
       if (reached[g] || r.cls == RegionClass::Field || r.cls == RegionClass::Other) return false;
@@ -741,7 +764,7 @@ class Regionizer {
     };
     for (int step = 0; step < kSaturatedReach; ++step) {
       std::vector<char> next(reached);
-      auto spread = [&](std::vector<ScanLine>& lines, const std::vector<std::size_t>& first, bool horizontal) {
+      const auto spread = [&](const std::vector<ScanLine>& lines, const std::vector<std::size_t>& first, bool rows) {
         for (std::size_t l = 0; l < lines.size(); ++l) {
           const ScanLine& a = lines[l];
           for (std::size_t i = 0; i + 1 < a.regions.size(); ++i) {  // along the line
@@ -749,10 +772,9 @@ class Regionizer {
             if (reached[g] && canReach(g + 1, a, i + 1)) next[g + 1] = 1;
             if (reached[g + 1] && canReach(g, a, i)) next[g] = 1;
           }
-          if (l + 1 >= lines.size() || (horizontal && (hExtra_[l] || hExtra_[l + 1]))) continue;
-          const ScanLine& b = lines[l + 1];  // across to the next line: overlapping regions
-          std::size_t i = 0, k = 0;
-          while (i < a.regions.size() && k < b.regions.size()) {
+          if (l + 1 >= lines.size() || (rows && (hExtra_[l] || hExtra_[l + 1]))) continue;
+          const ScanLine& b = lines[l + 1];  // across to the next line
+          for (std::size_t i = 0, k = 0; i < a.regions.size() && k < b.regions.size();) {
             const std::size_t ga = first[l] + i, gb = first[l + 1] + k;
             if (reached[ga] && canReach(gb, b, k)) next[gb] = 1;
             if (reached[gb] && canReach(ga, a, i)) next[ga] = 1;
@@ -761,37 +783,35 @@ class Regionizer {
           }
         }
       };
-      spread(out.vertical, firstV, false);
-      spread(out.horizontal, firstH, true);
+      spread(out.vertical, firstV_, false);
+      spread(out.horizontal, firstH_, true);
       reached.swap(next);
     }
-    for (auto* lines : {&out.vertical, &out.horizontal}) {
-      std::size_t g = lines == &out.vertical ? 0 : verticalCount_;
-      for (ScanLine& line : *lines)
-        for (ScanRegion& r : line.regions)
-          if (reached[g++]) r.cls = RegionClass::Unknown;
-    }
-    // The extra rows are in no united set and cross nothing counted: a long saturated stretch
-    // on one is Unknown where the vertical line through its middle says so.
+  }
+
+  // The extra rows are in no united set and cross nothing counted: a long saturated stretch
+  // on one is Unknown where a vertical line through its middle half says so.
+  void markExtraRows(ScanLineRegions& out, float clip) const {
     for (std::size_t h = 0; h < out.horizontal.size(); ++h) {
       if (!hExtra_[h]) continue;
       ScanLine& row = out.horizontal[h];
       for (std::size_t k = 0; k < row.regions.size(); ++k) {
         ScanRegion& r = row.regions[k];
-        if (!longSaturated(firstH[h] + k)) continue;
+        if (!longSaturated(stats_[firstH_[h] + k], clip)) continue;
         const int mid = (r.from + r.to) / 2;
-        for (const ScanLine& v : out.vertical) {
-          if (v.coord < r.from || v.coord >= r.to || std::abs(v.coord - mid) > (r.to - r.from) / 4) continue;
-          const long a = regionAt(v, firstV[&v - out.vertical.data()], row.coord);
-          if (a >= 0 && v.regions[a - firstV[&v - out.vertical.data()]].cls == RegionClass::Unknown) {
-            r.cls = RegionClass::Unknown;
-            break;
-          }
+        for (std::size_t v = 0; v < out.vertical.size() && r.cls != RegionClass::Unknown; ++v) {
+          const ScanLine& line = out.vertical[v];
+          if (std::abs(line.coord - mid) > (r.to - r.from) / 4) continue;
+          const long a = regionAt(line, firstV_[v], row.coord);
+          if (a >= 0 && line.regions[a - firstV_[v]].cls == RegionClass::Unknown) r.cls = RegionClass::Unknown;
         }
       }
     }
-    // The blur between a saturated stretch and the field (a shadow's soft edge) is brighter
-    // and greyer than the field, so it passed as white; it is saturated light mixed in.
+  }
+
+  // The blur between a saturated stretch and the field (a shadow's soft edge) is brighter and
+  // greyer than the field, so it passed as white; it is saturated light mixed in.
+  static void mergeBlurIntoUnknown(ScanLineRegions& out) {
     for (auto* lines : {&out.vertical, &out.horizontal})
       for (ScanLine& line : *lines) {
         auto& rs = line.regions;
@@ -896,6 +916,7 @@ class Regionizer {
   std::vector<RegionStats> stats_;  // vertical lines' regions, then horizontal lines'
   std::size_t verticalCount_ = 0;
   std::vector<char> hExtra_;  // per horizontal line of the output: an extra row
+  std::vector<std::size_t> firstV_, firstH_;  // where each line's regions start in stats_
   std::vector<int> parent_;
   std::vector<SetSum> sets_;
   std::vector<char> isFieldSet_, member_;  // per set root; per region
