@@ -14,6 +14,8 @@ namespace nao {
 namespace {
 
 constexpr double kDeg = M_PI / 180;
+// After a roll, the torso's x axis this far below the horizontal (sine) counts as lying on the front.
+constexpr double kFrontTipped = 0.3;
 
 double smoothstep(double t) {
   t = std::clamp(t, 0.0, 1.0);
@@ -114,71 +116,53 @@ JointArray GetUp::squatPosture(const Squat& squat) {
 }
 
 std::vector<GetUp::KeyFrame> GetUp::frontFrames(const Params& params) {
-  // A settling frame (the robot comes to rest in a known pose whatever the fall left), then
-  // four frames found by a cross-entropy search in the simulator (see GetUp.h): arms under
-  // the chest, knees up, legs turned in and spread (HipYawPitch), hands and feet on the
-  // floor; then the squat. Angles in deg, left side (the right mirrored).
+  // Lying on the face: the arms go overhead along the floor (out to the side first: swung
+  // through the front they would hit the floor), the legs straighten and spread. Then the hips
+  // flex into a wide-legged pike ("downward dog"): straight arms in line with the torso prop the
+  // head off the floor, the soles are flat (whole-body IK: the leg angles that keep both soles
+  // flat at the torso's expected lean), most of the weight is on the feet. From there the torso
+  // rises, the hips sink and the hands come back while the centre of mass moves over the feet
+  // (lean 120 -> 90 -> 80 -> 70 -> 55 deg, each posture from comIK with the COM as close to the
+  // soles as the joint limits allow) into the frog squat. The arms carry load only as straight
+  // struts: weak shoulder motors (~2 Nm) cannot lift the chest, so nothing asks them to.
+  // Angles in deg, left side (the right mirrored).
   std::vector<KeyFrame> frames;
-  Pose settle;  // knees bent, arms forward on the floor: a known start
-  settle.headPitch = -20;
-  settle.shoulderPitch = 5;
-  settle.elbowRoll = -35;
-  settle.hipPitch = -35;
-  settle.knee = 70;
-  frames.push_back(frame(0.7, 1, settle));
-  {
-    Pose p;
-    p.headPitch = -20;
-    p.shoulderPitch = 10.0;
-    p.elbowRoll = -104.3;
-    p.hipYawPitch = 0.3;
-    p.hipRoll = -21.1;
-    p.hipPitch = -3.1;
-    p.knee = 26.2;
-    p.anklePitch = 14.4;
-    frames.push_back(frame(1.39, 1, p));
-  }
-  {
-    Pose p;
-    p.headPitch = -20;
-    p.shoulderPitch = 21.7;
-    p.elbowRoll = -17.6;
-    p.hipYawPitch = 13.5;
-    p.hipRoll = -33.7;
-    p.hipPitch = 16.8;
-    p.knee = 95.7;
-    p.anklePitch = 28.3;
-    frames.push_back(frame(0.47, 1, p));
-  }
-  {
-    Pose p;
-    p.headPitch = -20;
-    p.shoulderPitch = 3.3;
-    p.elbowRoll = -106.8;
-    p.hipYawPitch = -59.2;
-    p.hipRoll = 20.4;
-    p.hipPitch = -126.5;
-    p.knee = 121.7;
-    p.anklePitch = -3.4;
-    frames.push_back(frame(0.78, 1, p));
-  }
-  {
-    Pose p;
-    p.headPitch = -20;
-    p.shoulderPitch = 29.3;
-    p.elbowRoll = -5.7;
-    p.hipYawPitch = -76.7;
-    p.hipRoll = 18.0;
-    p.hipPitch = -102.8;
-    p.knee = 64.6;
-    p.anklePitch = 10.1;
-    frames.push_back(frame(0.57, 1, p));
+  Pose p;
+  p.headPitch = -20;
+  p.elbowRoll = -3;
+  frames.push_back(frame(0.30, 1, p));  // flat: arms along the body, legs straight
+  p.shoulderRoll = 76;
+  frames.push_back(frame(0.30, 1, p));  // arms out to the side, along the floor
+  p.shoulderPitch = -90;
+  frames.push_back(frame(0.25, 1, p));  // turned about their own axis
+  p.shoulderRoll = 10;
+  p.hipRoll = 40;
+  frames.push_back(frame(0.35, 1, p));  // overhead; legs spread
+  // IK postures: lean (deg), hip height and half width of the feet (m), toes out (deg), COM
+  // ahead of the soles' midpoint (m), then ShoulderPitch (deg; about 90 - lean = arms vertical).
+  struct Stage {
+    double duration, lean, height, width, yaw, comX, shoulderPitch;
+  };
+  for (const Stage& st : {Stage{0.8, 120, 0.22, 0.15, 20, 0.07, -90}, Stage{0.5, 120, 0.24, 0.15, 20, 0.07, -90},
+                          Stage{0.6, 90, 0.22, 0.15, 20, 0.07, -60}, Stage{0.5, 80, 0.19, 0.15, 40, 0.05, -10},
+                          Stage{0.5, 70, 0.19, 0.15, 40, 0.03, 10}, Stage{0.5, 55, 0.16, 0.13, 40, 0.02, 30}}) {
+    Squat q;
+    q.pitch = st.lean * kDeg;
+    q.height = st.height;
+    q.width = st.width;
+    q.yaw = st.yaw * kDeg;
+    q.comX = st.comX;
+    Pose arms;
+    arms.headPitch = -20;
+    arms.shoulderPitch = st.shoulderPitch;
+    arms.elbowRoll = -3;
+    frames.push_back(squatFrame(q, st.duration, arms));
   }
   Pose arms;
   arms.headPitch = -20;
-  arms.shoulderPitch = 26.0;
-  arms.elbowRoll = 13.8;
-  KeyFrame squat = squatFrame(params.frontSquat, 0.20, arms);
+  arms.shoulderPitch = 30;
+  arms.elbowRoll = -3;
+  KeyFrame squat = squatFrame(params.frontSquat, 0.50, arms);
   // Early abort: not on the feet with the torso leaning less than ~75 deg by now, the rise
   // cannot work; failing here lets the motion engine start the next attempt at once.
   squat.pitchMin = -0.3;
@@ -191,9 +175,9 @@ std::vector<GetUp::KeyFrame> GetUp::frontFrames(const Params& params) {
 
 std::vector<GetUp::KeyFrame> GetUp::backFrames(const Params& params) {
   (void)params;
-  // Onto the front (found by a cross-entropy search, see GetUp.h): the left leg and arm swing
-  // across the body while the right arm reaches over the head. Angles in deg, clamped to the
-  // joint limits; rolls the robot onto its side, not yet reliably onto its front.
+  // Onto the front (see GetUp.h): first onto the left side -- three frames from an earlier
+  // cross-entropy search: the left leg and arm swing across the body while the right arm
+  // reaches over the head. Angles in deg, clamped to the joint limits.
   std::vector<KeyFrame> frames;
   const auto add = [&frames](double duration, std::initializer_list<std::pair<Joint, double>> angles) {
     KeyFrame k = frame(duration, 1, Pose{});
@@ -212,6 +196,32 @@ std::vector<GetUp::KeyFrame> GetUp::backFrames(const Params& params) {
       {LShoulderPitch, -4.6}, {LShoulderRoll, -2.9}, {LElbowRoll, -22.1}, {RShoulderPitch, -58.9},
       {RShoulderRoll, -24.0}, {RElbowRoll, 17.5}, {LHipYawPitch, -24.0}, {LHipRoll, -13.7}, {RHipRoll, -70.0},
       {LHipPitch, -30.7}, {RHipPitch, 32.5}, {LKneePitch, 22.7}, {RKneePitch, 35.7}});
+  // On the left side now. Slowly (a fast swing would roll the body back): the upper leg and
+  // arm forward, then both legs piked forward, then two frames found by a cross-entropy search
+  // (fitness: lying on the face once the limbs straighten, over 4 then 8 trials per candidate,
+  // half of them randomised robots) that tip the body over onto its face; then arms along the
+  // body, legs straight, and the front get-up follows.
+  add(0.9, {
+      {LShoulderPitch, -4.6}, {LShoulderRoll, -2.9}, {LElbowRoll, -22.1}, {RShoulderPitch, 20.0},
+      {RShoulderRoll, 18.0}, {RElbowRoll, 5.0}, {LHipYawPitch, -24.0}, {LHipRoll, -13.7}, {RHipRoll, 21.0},
+      {LHipPitch, -30.7}, {RHipPitch, -70.0}, {LKneePitch, 22.7}, {RKneePitch, 0.0}});
+  add(0.8, {
+      {LShoulderPitch, -4.6}, {LShoulderRoll, -2.9}, {LElbowRoll, -5.0}, {RShoulderPitch, 20.0},
+      {RShoulderRoll, 18.0}, {RElbowRoll, 5.0}, {LHipYawPitch, 0.0}, {LHipRoll, -13.7}, {RHipRoll, 21.0},
+      {LHipPitch, -88.0}, {RHipPitch, -88.0}, {LKneePitch, 0.0}, {RKneePitch, 0.0}});
+  add(1.14, {
+      {LShoulderPitch, -1.4}, {LShoulderRoll, -27.5}, {LElbowRoll, -15.0}, {RShoulderPitch, 58.2},
+      {RShoulderRoll, -14.5}, {RElbowRoll, -9.1}, {LHipYawPitch, 53.3}, {LHipRoll, -7.4}, {RHipRoll, -45.9},
+      {LHipPitch, -132.6}, {RHipPitch, -143.3}, {LKneePitch, 5.6}, {RKneePitch, -1.1}});
+  add(1.04, {
+      {LShoulderPitch, -76.7}, {LShoulderRoll, -67.4}, {LElbowRoll, -77.7}, {RShoulderPitch, 1.6},
+      {RShoulderRoll, -58.5}, {RElbowRoll, -30.2}, {LHipYawPitch, -32.7}, {LHipRoll, 8.1}, {RHipRoll, 86.7},
+      {LHipPitch, 3.0}, {RHipPitch, -4.6}, {LKneePitch, 49.5}, {RKneePitch, -19.7}});
+  Pose flat;
+  flat.headPitch = -20;
+  flat.elbowRoll = -3;
+  frames.push_back(frame(0.4, 1, flat));
+  frames.push_back(frame(0.5, 1, flat));
   return frames;
 }
 
@@ -308,7 +318,10 @@ JointRequest GetUp::update(const SensorFrame& frame) {
         failed_ = true;
         return out;
       }
-      const FallDirection lying = lyingDirection(frame.inertial.angle.x(), pitch);
+      FallDirection lying = lyingDirection(frame.inertial.angle.x(), pitch);
+      // Tipped past the side towards the face (the torso's x axis well below the horizontal):
+      // the front get-up copes with that.
+      if (-std::sin(pitch) < -kFrontTipped) lying = FallDirection::Front;
       if (lying == FallDirection::Left || lying == FallDirection::Right) {
         startFrames(frame, sideRollFrames(lying == FallDirection::Left), true);
       } else {
