@@ -652,7 +652,8 @@ class Regionizer {
   // at most two line widths across. A robot stands up from the field: on a vertical line its
   // white has no field above it (and its grey is rarely in the field's hue about the white
   // point, though warm light can put it there), so a vertical stretch needs field or Unknown
-  // on both sides. Sizes allow kLineBlurPx of blur.
+  // on both sides, and a vertical stretch counts across a horizontal one only with the field
+  // beyond it. Sizes allow kLineBlurPx of blur.
   bool fieldHueAboutWhite(const FieldColour& fc, const RegionStats& s) const {
     const float du = s.u - 128 - s.y * whiteU_, dv = s.v - 128 - s.y * whiteV_;
     if (std::sqrt(du * du + dv * dv) < kMinFieldChroma) return false;
@@ -667,8 +668,10 @@ class Regionizer {
       const int mid = std::clamp((from + to) / 2, 0, grid_.height - 1);
       return (to - from) / (grid_.lineHeightPx[mid] + kLineBlurPx);
     };
-    // Per region of a vertical line: its white stretch's length in line heights.
+    // Per region of a vertical line: its white stretch's length in line heights, and whether
+    // the field (or Unknown) lies beyond it (above it in the image).
     std::vector<float> tV(verticalCount_, 0);
+    std::vector<char> fieldBeyond(verticalCount_, 0);
     for (std::size_t v = 0; v < out.vertical.size(); ++v) {
       const auto& rs = out.vertical[v].regions;
       for (std::size_t k0 = 0; k0 < rs.size();) {
@@ -676,6 +679,8 @@ class Regionizer {
         if (rs[k0].cls == RegionClass::White) {
           while (k1 < rs.size() && rs[k1].cls == RegionClass::White) ++k1;
           std::fill(tV.begin() + firstV_[v] + k0, tV.begin() + firstV_[v] + k1, along(rs[k0].from, rs[k1 - 1].to));
+          if (k0 > 0 && passable(rs[k0 - 1].cls))
+            std::fill(fieldBeyond.begin() + firstV_[v] + k0, fieldBeyond.begin() + firstV_[v] + k1, 1);
         }
         k0 = k1;
       }
@@ -766,32 +771,31 @@ class Regionizer {
         if (wide) std::fill(surface.begin() + firstV_[v] + k0, surface.begin() + firstV_[v] + k1, 1);
       });
     // On a horizontal line: at column x, the vertical line nearest it (of those reaching row y)
-    // is a surface there, or white whose stretch makes the white at least kWide line widths
-    // wide together with the horizontal stretch (tH line widths long).
+    // found a surface there, or is in white with the field beyond it that makes the white at
+    // least kWide line widths wide together with the horizontal stretch (tH line widths long).
+    // (A robot's leg has the robot above it, not the field.)
     const auto wideAcross = [&](int x, int y, float tH) {
       const auto it = std::lower_bound(out.vertical.begin(), out.vertical.end(), x,
                                        [](const ScanLine& l, int q) { return l.coord < q; });
       // The nearest vertical line on either side that reaches row y.
       long g = -1;
-      std::size_t v = 0;
       int best = 1 << 30;
       for (std::size_t j = static_cast<std::size_t>(it - out.vertical.begin()); j < out.vertical.size(); ++j) {
         const long r = regionAt(out.vertical[j], firstV_[j], y);
         if (r < 0) continue;
-        if (out.vertical[j].coord - x < best) best = out.vertical[j].coord - x, g = r, v = j;
+        if (out.vertical[j].coord - x < best) best = out.vertical[j].coord - x, g = r;
         break;
       }
       for (std::size_t j = static_cast<std::size_t>(it - out.vertical.begin()); j-- > 0;) {
         const long r = regionAt(out.vertical[j], firstV_[j], y);
         if (r < 0) continue;
-        if (x - out.vertical[j].coord < best) best = x - out.vertical[j].coord, g = r, v = j;
+        if (x - out.vertical[j].coord < best) best = x - out.vertical[j].coord, g = r;
         break;
       }
       if (g < 0) return false;
-      const RegionClass c = out.vertical[v].regions[g - firstV_[v]].cls;
       if (surface[g]) return true;
       const float t = tV[g];
-      return c == RegionClass::White && t > 0 && 1 / std::sqrt(1 / (t * t) + 1 / (tH * tH)) > kWide;
+      return fieldBeyond[g] && t > 0 && 1 / std::sqrt(1 / (t * t) + 1 / (tH * tH)) > kWide;
     };
     for (std::size_t h = 0; h < out.horizontal.size(); ++h) {
       const int y = out.horizontal[h].coord;
