@@ -734,8 +734,10 @@ class Regionizer {
     const auto stretches = [&](const ScanLine& line, std::size_t first, bool vertical, auto&& visit) {
       const auto& rs = line.regions;
       const bool startOpen = !vertical && line.start == 0;
-      const bool endOpen = line.end >= (vertical ? grid_.height : grid_.width) ||
-                           (vertical && fieldBelow(static_cast<std::size_t>(&line - out.vertical.data())));
+      const auto endOpen = [&] {
+        return line.end >= (vertical ? grid_.height : grid_.width) ||
+               (vertical && fieldBelow(static_cast<std::size_t>(&line - out.vertical.data())));
+      };
       for (std::size_t k0 = 0; k0 < rs.size();) {
         if (rs[k0].cls != RegionClass::White) {
           ++k0;
@@ -744,8 +746,8 @@ class Regionizer {
         std::size_t k1 = k0;
         while (k1 < rs.size() && rs[k1].cls == RegionClass::White) ++k1;
         const bool before = k0 == 0 ? startOpen : passable(rs[k0 - 1].cls);
-        const bool after = k1 == rs.size() ? endOpen : passable(rs[k1].cls);
-        if (vertical ? before && after : before || after) {
+        const auto after = [&] { return k1 == rs.size() ? endOpen() : passable(rs[k1].cls); };
+        if (vertical ? before && after() : before || after()) {
           SetSum sum;
           for (std::size_t k = k0; k < k1; ++k) {
             const RegionStats& st = stats_[first + k];
