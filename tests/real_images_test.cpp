@@ -78,11 +78,14 @@ TEST(RealImages, FieldColourCoversTheMaskedField) {
     std::printf("%-6s %9.3f %8ld %11.3f %9ld %9.3f\n", e.stem.c_str(), coverage, field, saturatedShare, white,
                 white ? static_cast<double>(whiteOnLine) / white : 0.0);
     EXPECT_GT(field, 1000) << e.stem;
-    // 00159 (backlit): a sunlit stripe of its carpet, not clipped to the sensor's maximum but
-    // washed out to a bright grey with a fifth of the field's chroma, is classified white
-    // (0.80 of the rest is field). Measured so that it cannot get worse; issue 3 stays open.
+    // 00159 (backlit): its carpet, sunlit between the shadow stripes of the window frames, is
+    // washed out to a bright grey with a fifth of the field's chroma. Where such white is wider
+    // than a line can be and lies on the field, it is field (ScanLineRegionizer.h, step 3c):
+    // 0.804 -> 0.882. What is left white touches people's feet and robots (which stand up from
+    // the field, so the rule leaves them alone). Measured so that it cannot get worse; the
+    // acceptance (0.90) is not reached.
     const bool knownHard = e.stem == "00159";
-    EXPECT_GE(coverage, knownHard ? 0.78 : 0.90) << e.stem;
+    EXPECT_GE(coverage, knownHard ? 0.87 : 0.90) << e.stem;
     EXPECT_LT(saturatedShare, 0.5) << e.stem;
   }
 }

@@ -364,6 +364,59 @@ TEST(ScanLineRegions, SensorSaturatedStripeIsLeftUnclassified) {
   for (int x = 20; x < s.rgb.cols; x += 40) EXPECT_NEAR(seg.boundary.yAt(x), before.boundary.yAt(x), 3.0) << x;
 }
 
+// Sun through a glass wall (real image 00159): between the shadow stripes of the window
+// frames, the carpet is washed out to a bright grey with a fifth of the field's chroma --
+// brighter and greyer than the field, so "white" by colour, but surfaces tens of centimetres
+// across. Lines cannot be that wide: such a white stretch, long along its scan line and wide
+// across it (ScanLineRegionizer.h, step 3c), is field. The lines stay white, whether they run
+// across the view or away from it, and so do the junctions where they meet.
+TEST(ScanLineRegions, WideWashedOutCarpetIsFieldNotLine) {
+  const CameraMatrix cm = cameraAt(0.5, 16 * kDeg);
+  const Scene plain = render(cm, lights()[0], 9);
+  Scene s = render(cm, lights()[0], 9);
+  // Sunlit patches on the carpet (robot frame, m), away from the lines.
+  struct Patch {
+    double x0, x1, y0, y1;
+  };
+  const std::vector<Patch> patches = {{0.5, 0.95, -0.6, 0.3}, {1.45, 1.8, -0.8, 0.35}, {2.0, 2.6, 1.0, 2.2}};
+  cv::Mat inPatch(s.rgb.rows, s.rgb.cols, CV_8U, cv::Scalar(0));
+  for (int y = 0; y < s.rgb.rows; ++y)
+    for (int x = 0; x < s.rgb.cols; ++x) {
+      const auto g = cm.pixelToGround({x + 0.5, y + 0.5});
+      if (!g || s.truth.at<std::uint8_t>(y, x) != kField) continue;
+      for (const Patch& p : patches)
+        if (g->x() > p.x0 && g->x() < p.x1 && g->y() > p.y0 && g->y() < p.y1 && !onLine(*g, 0.1)) {
+          inPatch.at<std::uint8_t>(y, x) = 255;
+          // Washed out: near the sensor's top, a little green left (a fifth of the field's
+          // chroma per luminance).
+          s.rgb.at<cv::Vec3b>(y, x) = cv::Vec3b(196, 214, 194);
+        }
+    }
+  const FieldSegmentation seg = segmentField(toCameraImage(s.rgb), cm);
+  const FieldSegmentation before = segmentField(toCameraImage(plain.rgb), cm);
+  EXPECT_EQ(seg.regions.saturationLevel, -1);  // no clipping: the saturation step plays no part
+  long patch = 0, patchField = 0, patchWhite = 0;
+  auto visit = [&](int x, int y, RegionClass c) {
+    if (!inPatch.at<std::uint8_t>(y, x)) return;
+    ++patch, patchField += c == RegionClass::Field, patchWhite += c == RegionClass::White;
+  };
+  for (const ScanLine& l : seg.regions.vertical)
+    for (const ScanRegion& r : l.regions)
+      for (int y = r.from; y < r.to; ++y) visit(l.coord, y, r.cls);
+  for (const ScanLine& l : seg.regions.horizontal)
+    for (const ScanRegion& r : l.regions)
+      for (int x = r.from; x < r.to; ++x) visit(x, l.coord, r.cls);
+  const RegionScore withPatches = score(seg.regions, s.truth), without = score(before.regions, plain.truth);
+  std::printf("patches: %ld px, %.3f field, %.3f white; lines white %.3f (without patches %.3f)\n", patch,
+              double(patchField) / std::max(1L, patch), double(patchWhite) / std::max(1L, patch),
+              withPatches.lineRecall(), without.lineRecall());
+  ASSERT_GT(patch, 2000);
+  EXPECT_GE(double(patchField) / patch, 0.9);
+  EXPECT_LE(double(patchWhite) / patch, 0.05);
+  EXPECT_GE(withPatches.lineRecall(), without.lineRecall() - 0.01);
+  EXPECT_GE(withPatches.whitePrecision(), 0.85);  // the patches' blurred rims stay white
+}
+
 TEST(ScanLineRegions, RegionsTileTheScannedLines) {
   const CameraMatrix cm = cameraAt(0.5, 20 * kDeg);
   const Scene s = render(cm, lights()[0], 7);

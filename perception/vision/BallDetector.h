@@ -46,7 +46,7 @@ struct BallParams {
   double minOutline = 0.5;  // of the rays that stay in the image, those meeting the field on the circle
   int maxCandidates = 80;        // verified per image, those with a dark part first
   double maxFieldInside = 0.15;  // fraction of field-coloured samples inside the ball
-  double minDarkInside = 0.08, maxDarkInside = 0.85;  // fraction of the black patches (and self-shadow)
+  double minDarkInside = 0.08, maxDarkInside = 0.75;  // fraction of the black patches (and self-shadow)
   double maxGreyness = 0.6;      // mean chroma inside / mean chroma of the field around
   // The evidence (see the header comment): contrast = (white - dark) / white inside the ball,
   // support = fraction of the directions in which the circle is a real border, around =

@@ -35,6 +35,10 @@ constexpr double kThinSet = 3.0;           // regions on average shorter than th
 constexpr int kHueMargin = 6;              // YHS2 hue units added to the found range
 constexpr double kThickWhite = 3.0;        // a region this many line sizes long is no line (across it)
 constexpr double kPaleRatio = 0.5;         // pale field: at least this fraction of the field's chroma / luminance
+// Wide white (step 3c): sizes in line sizes, each allowing kLineBlurPx of blur.
+constexpr float kLineBlurPx = 2.0f;        // px a line's image may grow by blur (and edge placement) on a scan line
+constexpr float kWideLong = 1.5f;          // a white stretch at least this many line sizes long ...
+constexpr float kWide = 2.0f;              // ... and with its crossing extent this many line widths wide is no line
 // Sensor saturation: where the sensor clips, every channel reads the same maximum and
 // colourless samples pile up at one luminance (a spike in the histogram, not a hump).
 constexpr float kSaturatedChroma = 4.0f;   // colourless: chroma below this
@@ -151,6 +155,7 @@ class Regionizer {
       classifyWhite(out.vertical, 0, out.fieldColour);
       classifyWhite(out.horizontal, verticalCount_, out.fieldColour);
       markSaturated(out);
+      markWideWhite(out);
     } else {
       for (auto* lines : {&out.vertical, &out.horizontal})
         for (ScanLine& line : *lines)
@@ -631,6 +636,184 @@ class Regionizer {
         else if (white) r.cls = RegionClass::White;
       }
     }
+  }
+
+  // --- Wide white (ScanLineRegionizer.h, step 3c) ---------------------------------------------
+  // A line is thin across itself. A white stretch (consecutive white regions) of t line sizes
+  // along its scan line, crossed by white w line widths across it, is about 1 / sqrt(1 / t^2 +
+  // 1 / w^2) line widths wide on the ground: 1 for a line at any angle (a line running up the
+  // image is long on a vertical scan line and one line width across it). Wider than kWide (10
+  // cm), it is no paint but a surface; in the field's hue about the white point, it is the
+  // sunlit carpet between shadow stripes, washed out to a bright grey: field. On a vertical
+  // line the width is that of the long white (or Unknown) on the neighbouring vertical lines,
+  // at a quarter, half and three quarters of the stretch, and two of the three must be wide (a
+  // junction of two lines is wide at one). On a horizontal line the crossing white is that of
+  // the vertical lines at those three columns (or their stretch was found a surface). A ball is
+  // at most two line widths across. A robot stands up from the field: on a vertical line its
+  // white has no field above it (and its grey is rarely in the field's hue about the white
+  // point, though warm light can put it there), so a vertical stretch needs field or Unknown
+  // on both sides, and a vertical stretch counts across a horizontal one only with the field
+  // beyond it. Sizes allow kLineBlurPx of blur.
+  bool fieldHueAboutWhite(const FieldColour& fc, const RegionStats& s) const {
+    const float du = s.u - 128 - s.y * whiteU_, dv = s.v - 128 - s.y * whiteV_;
+    if (std::sqrt(du * du + dv * dv) < kMinFieldChroma) return false;
+    const Yhs c = toYhs(s.y, 128 + du, 128 + dv);
+    return hueOffset(fc.hueMin, c.h) >= 0 && hueOffset(fc.hueMin, c.h) <= hueOffset(fc.hueMin, fc.hueMax);
+  }
+
+  void markWideWhite(ScanLineRegions& out) {
+    indexLines(out);
+    const auto passable = [](RegionClass c) { return c == RegionClass::Field || c == RegionClass::Unknown; };
+    const auto along = [&](int from, int to) {
+      const int mid = std::clamp((from + to) / 2, 0, grid_.height - 1);
+      return (to - from) / (grid_.lineHeightPx[mid] + kLineBlurPx);
+    };
+    // Per region of a vertical line: its white stretch's length in line heights, and whether
+    // the field (or Unknown) lies beyond it (above it in the image).
+    std::vector<float> tV(verticalCount_, 0);
+    std::vector<char> fieldBeyond(verticalCount_, 0);
+    for (std::size_t v = 0; v < out.vertical.size(); ++v) {
+      const auto& rs = out.vertical[v].regions;
+      for (std::size_t k0 = 0; k0 < rs.size();) {
+        std::size_t k1 = k0 + 1;
+        if (rs[k0].cls == RegionClass::White) {
+          while (k1 < rs.size() && rs[k1].cls == RegionClass::White) ++k1;
+          std::fill(tV.begin() + firstV_[v] + k0, tV.begin() + firstV_[v] + k1, along(rs[k0].from, rs[k1 - 1].to));
+          if (k0 > 0 && passable(rs[k0 - 1].cls))
+            std::fill(fieldBeyond.begin() + firstV_[v] + k0, fieldBeyond.begin() + firstV_[v] + k1, 1);
+        }
+        k0 = k1;
+      }
+    }
+    // At row y, vertical line v: -1 if it does not reach y, else whether it is in a long white
+    // stretch (or Unknown) there.
+    const auto whiteAt = [&](std::size_t v, int y) {
+      const long g = regionAt(out.vertical[v], firstV_[v], y);
+      if (g < 0) return -1;
+      const RegionClass c = out.vertical[v].regions[g - firstV_[v]].cls;
+      return c == RegionClass::Unknown || (c == RegionClass::White && tV[g] > kWideLong) ? 1 : 0;
+    };
+    // The white's width at row y about vertical line v: from the outermost vertical lines on
+    // either side that are still white there (lines that do not reach the row are passed over).
+    const auto widthAt = [&](std::size_t v, int y) {
+      std::size_t lo = v, hi = v;
+      for (std::size_t j = v; j-- > 0;) {
+        const int w = whiteAt(j, y);
+        if (w == 0) break;
+        if (w == 1) lo = j;
+      }
+      for (std::size_t j = v + 1; j < out.vertical.size(); ++j) {
+        const int w = whiteAt(j, y);
+        if (w == 0) break;
+        if (w == 1) hi = j;
+      }
+      return static_cast<float>(out.vertical[hi].coord - out.vertical[lo].coord);
+    };
+    std::vector<char> surface(stats_.size(), 0);
+    // Maximal stretches [k0, k1) of white regions in the field's hue (about the white point)
+    // lying on the field: on a vertical line with field or Unknown above and below (a robot or a
+    // person stands up from the field: above its white is no field), on a horizontal line on at
+    // least one side (a foot may stand on the other). The image border counts as field, the
+    // top of a vertical line (the field ends there) and a line's end inside the image do not.
+    // Below the end of a vertical line that ends inside the image (the grid's coarser lines
+    // carry on there): what the nearest line carrying on shows there, past its white.
+    const auto fieldBelow = [&](std::size_t v) {
+      const int y = out.vertical[v].end;
+      for (std::size_t d = 1; d < out.vertical.size(); ++d)
+        for (const std::size_t j : {v - d, v + d}) {
+          if (j >= out.vertical.size()) continue;  // (wrapped below zero as well)
+          const long g = regionAt(out.vertical[j], firstV_[j], y);
+          if (g < 0) continue;
+          const auto& rs = out.vertical[j].regions;
+          std::size_t k = static_cast<std::size_t>(g) - firstV_[j];
+          while (k < rs.size() && rs[k].cls == RegionClass::White) ++k;
+          return k == rs.size() ? out.vertical[j].end >= grid_.height : passable(rs[k].cls);
+        }
+      return false;
+    };
+    const auto stretches = [&](const ScanLine& line, std::size_t first, bool vertical, auto&& visit) {
+      const auto& rs = line.regions;
+      const bool startOpen = !vertical && line.start == 0;
+      const auto endOpen = [&] {
+        return line.end >= (vertical ? grid_.height : grid_.width) ||
+               (vertical && fieldBelow(static_cast<std::size_t>(&line - out.vertical.data())));
+      };
+      for (std::size_t k0 = 0; k0 < rs.size();) {
+        if (rs[k0].cls != RegionClass::White) {
+          ++k0;
+          continue;
+        }
+        std::size_t k1 = k0;
+        while (k1 < rs.size() && rs[k1].cls == RegionClass::White) ++k1;
+        const bool before = k0 == 0 ? startOpen : passable(rs[k0 - 1].cls);
+        const auto after = [&] { return k1 == rs.size() ? endOpen() : passable(rs[k1].cls); };
+        if (vertical ? before && after() : before || after()) {
+          SetSum sum;
+          for (std::size_t k = k0; k < k1; ++k) {
+            const RegionStats& st = stats_[first + k];
+            const double len = rs[k].to - rs[k].from;
+            sum.add({len, len * st.y, len * st.u, len * st.v});
+          }
+          if (fieldHueAboutWhite(out.fieldColour, sum.mean())) visit(k0, k1, rs[k0].from, rs[k1 - 1].to);
+        }
+        k0 = k1;
+      }
+    };
+    for (std::size_t v = 0; v < out.vertical.size(); ++v)
+      stretches(out.vertical[v], firstV_[v], true, [&](std::size_t k0, std::size_t k1, int from, int to) {
+        const float t = along(from, to);
+        if (t <= kWideLong) return;
+        int wideRows = 0;
+        for (int q = 1; q <= 3; ++q) {
+          const int y = from + q * (to - from) / 4;
+          const float w = widthAt(v, y) / (grid_.lineWidthPx[y] + kLineBlurPx);
+          wideRows += w > 0 && 1 / std::sqrt(1 / (t * t) + 1 / (w * w)) > kWide;
+        }
+        const bool wide = wideRows >= 2;
+        if (wide) std::fill(surface.begin() + firstV_[v] + k0, surface.begin() + firstV_[v] + k1, 1);
+      });
+    // On a horizontal line: at column x, the vertical line nearest it (of those reaching row y)
+    // found a surface there, or is in white with the field beyond it that makes the white at
+    // least kWide line widths wide together with the horizontal stretch (tH line widths long).
+    // (A robot's leg has the robot above it, not the field.)
+    const auto wideAcross = [&](int x, int y, float tH) {
+      const auto it = std::lower_bound(out.vertical.begin(), out.vertical.end(), x,
+                                       [](const ScanLine& l, int q) { return l.coord < q; });
+      // The nearest vertical line on either side that reaches row y.
+      long g = -1;
+      int best = 1 << 30;
+      for (std::size_t j = static_cast<std::size_t>(it - out.vertical.begin()); j < out.vertical.size(); ++j) {
+        const long r = regionAt(out.vertical[j], firstV_[j], y);
+        if (r < 0) continue;
+        if (out.vertical[j].coord - x < best) best = out.vertical[j].coord - x, g = r;
+        break;
+      }
+      for (std::size_t j = static_cast<std::size_t>(it - out.vertical.begin()); j-- > 0;) {
+        const long r = regionAt(out.vertical[j], firstV_[j], y);
+        if (r < 0) continue;
+        if (x - out.vertical[j].coord < best) best = x - out.vertical[j].coord, g = r;
+        break;
+      }
+      if (g < 0) return false;
+      if (surface[g]) return true;
+      const float t = tV[g];
+      return fieldBeyond[g] && t > 0 && 1 / std::sqrt(1 / (t * t) + 1 / (tH * tH)) > kWide;
+    };
+    for (std::size_t h = 0; h < out.horizontal.size(); ++h) {
+      const int y = out.horizontal[h].coord;
+      stretches(out.horizontal[h], firstH_[h], false, [&](std::size_t k0, std::size_t k1, int from, int to) {
+        const float tH = (to - from) / (grid_.lineWidthPx[y] + kLineBlurPx);
+        if (tH <= kWideLong) return;
+        int wideCols = 0;
+        for (int q = 1; q <= 3; ++q) wideCols += wideAcross(from + q * (to - from) / 4, y, tH);
+        if (wideCols >= 2) std::fill(surface.begin() + firstH_[h] + k0, surface.begin() + firstH_[h] + k1, 1);
+      });
+    }
+    std::size_t g = 0;
+    for (auto* lines : {&out.vertical, &out.horizontal})
+      for (ScanLine& line : *lines)
+        for (ScanRegion& r : line.regions)
+          if (surface[g++]) r.cls = RegionClass::Field;
   }
 
   // --- Sensor saturation (ScanLineRegionizer.h, step 3b) -------------------------------------

@@ -31,6 +31,11 @@
 //    field nor white, and no line spot or field colour comes from it. A clipped line stays
 //    white (long one way only), and so does a clipped goal post or robot that merely touches a
 //    clipped area. The field boundary takes Unknown as neutral, as it takes white.
+// 3c. Wide white: a white stretch that is long along its scan line and, measured across it on
+//    the scan lines of the other direction (or the neighbouring vertical lines), more than two
+//    line widths wide on the ground is no paint (a line is one width wide at any angle): in the
+//    field's hue about the white point -- a washed-out sunlit carpet between shadow stripes, as
+//    in real image 00159 -- it is field.
 // 4. Cleanup: white specks much thinner than a line between field are field; same-class
 //    neighbours on a line merge; small gaps between a field and a white region are split
 //    between them.
