@@ -164,6 +164,17 @@ struct RegionScore {
   double lineRecall() const { return lineTruth ? static_cast<double>(lineWhite) / lineTruth : 1; }
 };
 
+// Every pixel the scan lines cover, with its region's class: visit(x, y, cls).
+template <typename Visit>
+void forEachScanPixel(const ScanLineRegions& regions, Visit&& visit) {
+  for (const ScanLine& l : regions.vertical)
+    for (const ScanRegion& r : l.regions)
+      for (int y = r.from; y < r.to; ++y) visit(l.coord, y, r.cls);
+  for (const ScanLine& l : regions.horizontal)
+    for (const ScanRegion& r : l.regions)
+      for (int x = r.from; x < r.to; ++x) visit(x, l.coord, r.cls);
+}
+
 RegionScore score(const ScanLineRegions& regions, const cv::Mat& truth) {
   RegionScore s;
   cv::Mat lineNear;  // line pixels dilated by one pixel
@@ -174,12 +185,7 @@ RegionScore score(const ScanLineRegions& regions, const cv::Mat& truth) {
     if (t == kLine) s.lineTruth++, s.lineWhite += c == RegionClass::White;
     if (c == RegionClass::White && (t == kField || t == kLine)) s.white++, s.whiteOnLine += lineNear.at<std::uint8_t>(y, x) != 0;
   };
-  for (const ScanLine& l : regions.vertical)
-    for (const ScanRegion& r : l.regions)
-      for (int y = r.from; y < r.to; ++y) visit(l.coord, y, r.cls);
-  for (const ScanLine& l : regions.horizontal)
-    for (const ScanRegion& r : l.regions)
-      for (int x = r.from; x < r.to; ++x) visit(x, l.coord, r.cls);
+  forEachScanPixel(regions, visit);
   return s;
 }
 
@@ -344,12 +350,7 @@ TEST(ScanLineRegions, SensorSaturatedStripeIsLeftUnclassified) {
       ++line, lineWhite += c == RegionClass::White;
     }
   };
-  for (const ScanLine& l : seg.regions.vertical)
-    for (const ScanRegion& r : l.regions)
-      for (int y = r.from; y < r.to; ++y) visit(l.coord, y, r.cls);
-  for (const ScanLine& l : seg.regions.horizontal)
-    for (const ScanRegion& r : l.regions)
-      for (int x = r.from; x < r.to; ++x) visit(x, l.coord, r.cls);
+  forEachScanPixel(seg.regions, visit);
   std::printf("stripe: %ld px, %.3f unknown, %.3f white; field outside %.3f; clipped line %.3f white\n", inside,
               double(insideUnknown) / std::max(1L, inside), double(insideWhite) / std::max(1L, inside),
               double(fieldOk) / std::max(1L, field), double(lineWhite) / std::max(1L, line));
@@ -400,12 +401,7 @@ TEST(ScanLineRegions, WideWashedOutCarpetIsFieldNotLine) {
     if (!inPatch.at<std::uint8_t>(y, x)) return;
     ++patch, patchField += c == RegionClass::Field, patchWhite += c == RegionClass::White;
   };
-  for (const ScanLine& l : seg.regions.vertical)
-    for (const ScanRegion& r : l.regions)
-      for (int y = r.from; y < r.to; ++y) visit(l.coord, y, r.cls);
-  for (const ScanLine& l : seg.regions.horizontal)
-    for (const ScanRegion& r : l.regions)
-      for (int x = r.from; x < r.to; ++x) visit(x, l.coord, r.cls);
+  forEachScanPixel(seg.regions, visit);
   const RegionScore withPatches = score(seg.regions, s.truth), without = score(before.regions, plain.truth);
   std::printf("patches: %ld px, %.3f field, %.3f white; lines white %.3f (without patches %.3f)\n", patch,
               double(patchField) / std::max(1L, patch), double(patchWhite) / std::max(1L, patch),
