@@ -809,11 +809,7 @@ class Regionizer {
         if (wideCols >= 2) std::fill(surface.begin() + firstH_[h] + k0, surface.begin() + firstH_[h] + k1, 1);
       });
     }
-    std::size_t g = 0;
-    for (auto* lines : {&out.vertical, &out.horizontal})
-      for (ScanLine& line : *lines)
-        for (ScanRegion& r : line.regions)
-          if (surface[g++]) r.cls = RegionClass::Field;
+    setClass(out, surface, RegionClass::Field);
   }
 
   // --- Sensor saturation (ScanLineRegionizer.h, step 3b) -------------------------------------
@@ -828,11 +824,7 @@ class Regionizer {
     indexLines(out);
     std::vector<char> unknown = saturatedCores(out, clip, total);
     spreadOverEdges(out, unknown);
-    std::size_t g = 0;
-    for (auto* lines : {&out.vertical, &out.horizontal})
-      for (ScanLine& line : *lines)
-        for (ScanRegion& r : line.regions)
-          if (unknown[g++]) r.cls = RegionClass::Unknown;
+    setClass(out, unknown, RegionClass::Unknown);
     markExtraRows(out, clip);
     mergeBlurIntoUnknown(out);
   }
@@ -876,6 +868,15 @@ class Regionizer {
     double sum = 0;
     for (int v = level - 1; v <= std::min(255, level + 1); ++v) sum += v * hist[v];
     return static_cast<float>(sum / peak);
+  }
+
+  // Gives every region flagged (per region, in stats_ order) the class cls.
+  static void setClass(ScanLineRegions& out, const std::vector<char>& flagged, RegionClass cls) {
+    std::size_t g = 0;
+    for (auto* lines : {&out.vertical, &out.horizontal})
+      for (ScanLine& line : *lines)
+        for (ScanRegion& r : line.regions)
+          if (flagged[g++]) r.cls = cls;
   }
 
   // Where each line's regions start in stats_.
