@@ -109,11 +109,16 @@ void MotionEngine::applyHead(JointRequest& out, const HeadJointRequest& head) co
 // Far away the robot faces its path (forward is the fastest) and slows down in time to stop
 // (v <= sqrt(2 a d)); near, it turns to the target's heading and steps there
 // omnidirectionally and slowly, so that the last steps are small and it stops on the spot.
-Pose2 MotionEngine::walkToSpeed(const Pose2& target, double positionTolerance, double angleTolerance) {
+Pose2 MotionEngine::walkToSpeed(const Pose2& target, double positionTolerance, double angleTolerance, bool byStopPose) {
   walkTarget_ = target;
   // The remaining offset from where the robot would stand if it stopped now (the body's sway
-  // within a step would otherwise decide when the target counts as reached).
-  const Pose2 rel = walk_.standPoseEstimate().inverse() * walkTarget_;
+  // within a step would otherwise decide when the target counts as reached). WalkTo counts the
+  // step in the air too: it lands where the walk sends it, the other foot closes beside it.
+  // Steering by the feet as they are overshot by that step and dithered near the target (2 s
+  // longer walks, each small step adding odometry error). The kick's approach keeps the feet as
+  // they are: its ball placement was measured with that (median travel 3.28 m against 2.94 m).
+  const Pose2& from = byStopPose ? walk_.stopPoseEstimate() : walk_.standPoseEstimate();
+  const Pose2 rel = from.inverse() * walkTarget_;
   const double distance = std::hypot(rel.x, rel.y);
   const Params& p = params_;
   if (distance < positionTolerance && std::abs(rel.theta) < angleTolerance) walkToStopped_ = true;
@@ -173,7 +178,7 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
             walkTarget_ = odometry_.pose * request.walkTarget;
             walkToStopped_ = false;
           }
-          speed = walkToSpeed(walkTarget_, params_.walkToPositionTolerance, params_.walkToAngleTolerance);
+          speed = walkToSpeed(walkTarget_, params_.walkToPositionTolerance, params_.walkToAngleTolerance, true);
           stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
           static const bool trace = std::getenv("NAO_WALKTO_TRACE") != nullptr;
           if (trace && static_cast<int>(frame.time / kCycle) % 8 == 0) {
@@ -191,7 +196,7 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
             }
             // The kick pose: facing the kick direction, the ball in front of the kicking foot.
             const Pose2 pose = kickPose(request.ballPosition, request.kickDirection, kickLeft_);
-            speed = walkToSpeed(odometry_.pose * pose, params_.kickPositionTolerance, params_.kickAngleTolerance);
+            speed = walkToSpeed(odometry_.pose * pose, params_.kickPositionTolerance, params_.kickAngleTolerance, false);
             stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
           }
           break;

@@ -67,7 +67,8 @@ class MotionEngine {
 
   void enter(State state, const SensorFrame& frame);
   JointRequest interpolate(const SensorFrame& frame, const JointArray& goal, double duration, double stiffness);
-  Pose2 walkToSpeed(const Pose2& target, double positionTolerance, double angleTolerance);
+  // byStopPose: steer by Walk::stopPoseEstimate (WalkTo), else by standPoseEstimate (the kick's approach).
+  Pose2 walkToSpeed(const Pose2& target, double positionTolerance, double angleTolerance, bool byStopPose);
   Pose2 kickPose(const Eigen::Vector2d& ball, double direction, bool leftFoot) const;
   bool wantsFeet(const MotionRequest& request) const;
   void applyHead(JointRequest& out, const HeadJointRequest& head) const;

@@ -50,6 +50,43 @@ double yawRateOf(const SensorFrame& frame) {
   return (w.y() * std::sin(roll) + w.z() * std::cos(roll)) / std::cos(pitch);
 }
 
+// The robot frame seen from a point of a sole (sole frame coordinates), on the ground plane:
+// its position from that point, turned into the sole's heading, and its heading relative to
+// the sole. `sole` is the sole in the torso's yaw-free frame.
+Pose2 robotInSole(const Isometry3d& sole, const Vector3d& point) {
+  const Vector3d toTorso = -(sole * point);
+  const Vector3d soleX = sole.linear().col(0);
+  const double soleYaw = std::atan2(soleX.y(), soleX.x());
+  const Vector2d v = rotZ(-soleYaw).topLeftCorner<2, 2>() * toTorso.head<2>();
+  return Pose2(v.x(), v.y(), -soleYaw);
+}
+
+// Where a foot touches the ground, in its sole frame, from its four FSRs: their centre of
+// pressure, moved out to the sole's edge when all the weight is on the sensors along one edge
+// (the foot is on its toes, its heel or a side; the sensors sit 2-3 cm inside the sole's
+// outline). The sole frame's origin when the foot carries next to nothing.
+Vector3d groundContact(const SensorFrame& frame, bool left) {
+  const int first = left ? 0 : 4;
+  double total = 0;
+  for (int i = first; i < first + 4; ++i) total += std::max(0.0, frame.fsr.weight[i]);
+  if (total < 0.05) return Vector3d::Zero();
+  const auto w = [&](int k) { return std::max(0.0, frame.fsr.weight[first + k]) / total; };
+  const double front = w(0) + w(1);     // share on the front sensors
+  const double leftSide = w(0) + w(2);  // share on the sensors on the foot's left
+  // Bilinear in the sensors' rectangle (x0 rear .. x1 front, y0 right .. y1 left) ...
+  const double x1 = dims::fsrX(first), x0 = dims::fsrX(first + 2);
+  const double y1 = dims::fsrY(first), y0 = dims::fsrY(first + 1);
+  const double yLeftEdge = left ? dims::kSoleOuter : dims::kSoleInner, yRightEdge = left ? -dims::kSoleInner : -dims::kSoleOuter;
+  // ... and beyond it towards the edge once one side carries (nearly) everything.
+  const auto spread = [](double share, double lo, double hi, double edgeLo, double edgeHi) {
+    constexpr double kEdge = 0.95;
+    if (share > kEdge) return hi + (share - kEdge) / (1 - kEdge) * (edgeHi - hi);
+    if (share < 1 - kEdge) return lo - (1 - kEdge - share) / (1 - kEdge) * (lo - edgeLo);
+    return lo + share * (hi - lo);
+  };
+  return Vector3d(spread(front, x0, x1, -dims::kSoleBack, dims::kSoleFront), spread(leftSide, y0, y1, yRightEdge, yLeftEdge), 0);
+}
+
 }  // namespace
 
 Walk::Walk(const Params& params) : params_(params) {
@@ -529,41 +566,54 @@ void Walk::compensateSag(JointArray& joints, const Foot3& left, const Foot3& rig
 void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
   const double dt = odometryTime_ < 0 ? 0.0 : std::clamp(frame.time - odometryTime_, 0.0, 0.05);
   odometryTime_ = frame.time;
-  // The robot frame seen from either sole: position from the leg's joint angles and the IMU's
-  // tilt (yaw-free), heading relative to the sole.
+  // Each sole in the torso's yaw-free frame (the leg's joint angles turned by the IMU's tilt).
   const Eigen::Matrix3d tilt = torsoTilt(frame.inertial.angle.x(), frame.inertial.angle.y());
-  std::array<Pose2, 2> relative;  // [left, right]: the robot frame in the sole frame
-  for (int side = 0; side < 2; ++side) {
-    const Isometry3d sole = torsoToSole(frame.joints.position, side == 0 ? BodySide::Left : BodySide::Right);
-    const Vector3d toTorso = tilt * (-sole.translation());
-    const Vector3d soleX = tilt * sole.linear().col(0);
-    const double soleYaw = std::atan2(soleX.y(), soleX.x());
-    const Vector2d v = rotZ(-soleYaw).topLeftCorner<2, 2>() * toTorso.head<2>();
-    relative[side] = Pose2(v.x(), v.y(), -soleYaw);
-  }
+  std::array<Isometry3d, 2> soles;  // [left, right]
+  for (int side = 0; side < 2; ++side)
+    soles[side] = Isometry3d(tilt) * torsoToSole(frame.joints.position, side == 0 ? BodySide::Left : BodySide::Right);
   const double yawRate = yawRateOf(frame);
   const double turn = 0.5 * (yawRate + lastYawRate_) * dt;
   lastYawRate_ = yawRate;
   // The motion since the last cycle relative to the feet on the ground (a loaded foot does not
   // move), each foot's share by the weight it carried: while the weight passes from one foot to
   // the other both slip a little, the lightly loaded one more. The heading from the gyro.
+  // The point of a sole that stays put is where it touches the ground: a foot landing on its
+  // heel or rolling onto its toes turns about that edge, and the point below the ankle moves by
+  // millimetres while it does. So each foot's motion is taken at its ground contact (from its
+  // FSRs, this cycle), the same sole point in both cycles.
   if (haveRelative_ && !rotationOnly) {
-    const Pose2 dl = lastRelative_[0].inverse() * relative[0], dr = lastRelative_[1].inverse() * relative[1];
-    const double w = std::pow(odometryLeftShare_, params_.odometryLoadExponent);
-    const double wr = std::pow(1 - odometryLeftShare_, params_.odometryLoadExponent);
-    const double a = w / std::max(w + wr, 1e-9);
+    std::array<Pose2, 2> d;
+    for (int side = 0; side < 2; ++side) {
+      const Vector3d contact = groundContact(frame, side == 0);
+      d[side] = robotInSole(lastSoles_[side], contact).inverse() * robotInSole(soles[side], contact);
+    }
+    double w = std::pow(odometryLeftShare_, params_.odometryLoadExponent);
+    double wr = std::pow(1 - odometryLeftShare_, params_.odometryLoadExponent);
+    // A foot the walk has begun to lift is no reference even while its FSRs still read weight:
+    // it is being dragged off the ground (measured: up to 8 mm a cycle the wrong way when the
+    // other foot had landed late and was still bouncing on its heel).
+    if (phase_ == Phase::Walking && t_ > params_.odometrySwingAfter) (supportLeft_ ? wr : w) = 0;
+    const double a = w + wr > 1e-9 ? w / (w + wr) : (supportLeft_ ? 1.0 : 0.0);
     const double k = params_.odometryScale;
-    Pose2 delta(k * (a * dl.x + (1 - a) * dr.x), k * (a * dl.y + (1 - a) * dr.y), a * dl.theta + (1 - a) * dr.theta);
+    Pose2 delta(k * (a * d[0].x + (1 - a) * d[1].x), k * (a * d[0].y + (1 - a) * d[1].y), a * d[0].theta + (1 - a) * d[1].theta);
     if (params_.gyroOdometry) delta.theta = turn;
     odometry_ = odometry_ * delta;
   } else {
     odometry_.theta = Pose2::wrap(odometry_.theta + turn);
   }
-  lastRelative_ = relative;
-  // The feet's centre in the robot frame (each sole's pose is the inverse of `relative`).
-  const Pose2 l = relative[0].inverse(), r = relative[1].inverse();
+  lastSoles_ = soles;
+  // The feet's centre in the robot frame (each sole's pose is the inverse of the robot's in it).
+  const Pose2 l = robotInSole(soles[0], Vector3d::Zero()).inverse(), r = robotInSole(soles[1], Vector3d::Zero()).inverse();
   const Pose2 centre((l.x + r.x) / 2, (l.y + r.y) / 2, meanAngle(l.theta, r.theta));
   standPoseEstimate_ = odometry_ * centre * standOffset_;
+  // Stopping now, the swing foot lands where the plan sends it and the other foot closes beside it.
+  Pose2 stopCentre = centre;
+  if (phase_ == Phase::Walking) {
+    const Pose2 supportInRobot = robotInSole(soles[supportLeft_ ? 0 : 1], Vector3d::Zero()).inverse();
+    const Pose2 landing = supportInRobot * (support_.inverse() * swingTarget_);
+    stopCentre = landing * Pose2(0, (supportLeft_ ? 1.0 : -1.0) * params_.footSpacing / 2, 0);
+  }
+  stopPoseEstimate_ = odometry_ * stopCentre * standOffset_;
   haveRelative_ = !rotationOnly;
   const double fl = frame.fsr.total(true), fr = frame.fsr.total(false);
   if (fl + fr > 0.5) odometryLeftShare_ = fl / (fl + fr);

@@ -32,6 +32,15 @@ inline constexpr double kSoleBack = 0.05;
 inline constexpr double kSoleInner = 0.03877;  // towards the other foot
 inline constexpr double kSoleOuter = 0.05002;
 
+// The force sensors under the left sole (x forward, y left, m, in the sole frame), in LoLA order:
+// front-left, front-right, rear-left, rear-right. The right foot's are these mirrored (y -> -y,
+// left and right swapped).
+inline constexpr double kFsrX[4] = {0.07025, 0.07025, -0.03025, -0.02965};
+inline constexpr double kFsrY[4] = {0.0299, -0.0231, 0.0299, -0.0191};
+// Sensor i of 8 (LoLA order: left foot, then right) in its sole's frame, x and y.
+inline constexpr double fsrX(int i) { return i < 4 ? kFsrX[i] : kFsrX[(i - 4) ^ 1]; }
+inline constexpr double fsrY(int i) { return i < 4 ? kFsrY[i] : -kFsrY[(i - 4) ^ 1]; }
+
 // Cameras, in the HeadPitch joint frame; "pitched down by a" is Ry(a).
 inline constexpr double kTopCameraX = 0.05871, kTopCameraZ = 0.06364;
 inline constexpr double kTopCameraPitch = 1.2 * kDeg;

@@ -170,6 +170,45 @@ TEST(Walk, ModelAgreesWithTheSensors) {
   EXPECT_LT(std::abs(Pose2::wrap(odo.theta - est.theta)), 1 * kDeg);
 }
 
+// Odometry from the ground contact: the torso held still while the loaded left foot rolls
+// onto its toes (heel up 0 -> 17 deg, all its weight on the front FSRs, the right foot in the
+// air). The toe edge stays put, so the robot has not moved; the point below the ankle, which
+// the odometry used to follow, moves by millimetres.
+TEST(Walk, OdometryFollowsTheGroundContactOfARollingFoot) {
+  Walk walk;
+  const JointArray stand = walk.standPosture();
+  const Eigen::Isometry3d left0 = torsoToSole(stand, BodySide::Left), right0 = torsoToSole(stand, BodySide::Right);
+  // The FSRs' contact for this load: the sole's front edge, between the two front sensors.
+  const Eigen::Vector3d edge(dims::kSoleFront, (dims::fsrY(LFsrFL) + dims::fsrY(LFsrFR)) / 2, 0);
+  SensorFrame frame;
+  frame.fsr.weight[LFsrFL] = frame.fsr.weight[LFsrFR] = 2.6;
+  JointArray joints = stand;
+  Eigen::Vector3d firstEdge = Eigen::Vector3d::Zero(), firstOrigin = Eigen::Vector3d::Zero();
+  double originMoved = 0;
+  for (int k = 0; k <= 12; ++k) {
+    const double heelUp = 0.3 * k / 12;
+    Eigen::Isometry3d roll = Eigen::Isometry3d::Identity();
+    roll.translate(edge).rotate(Eigen::AngleAxisd(heelUp, Eigen::Vector3d::UnitY())).translate(-edge);
+    ASSERT_TRUE(legsIK(left0 * roll, right0, joints));
+    frame.time = 0.012 * k;
+    frame.joints.position = joints;
+    walk.updateOdometry(frame);
+    // The truth from the kinematics of these joints (the IK is close, not exact): the robot's
+    // motion is minus that of the toe edge; the ankle's point would have said minus its own.
+    const Eigen::Isometry3d sole = torsoToSole(joints, BodySide::Left);
+    if (k == 0) {
+      firstEdge = sole * edge;
+      firstOrigin = sole.translation();
+    }
+    const Eigen::Vector3d truth = firstEdge - sole * edge;
+    originMoved = std::max(originMoved, (firstOrigin - sole.translation()).head<2>().norm());
+    const Pose2& odo = walk.odometry();
+    EXPECT_NEAR(odo.x, truth.x(), 5e-4) << "heel up " << heelUp;
+    EXPECT_NEAR(odo.y, truth.y(), 5e-4) << "heel up " << heelUp;
+  }
+  EXPECT_GT(originMoved, 0.004);  // the old reference point would have been this far off
+}
+
 // Sole levelling against injected joint offsets (the simulator's truth): standing, the walk's
 // estimate of each sole's roll and pitch error is minus the sum of that leg's offsets; walking
 // with offsets that pitch one sole up and the other down, the robot keeps its heading and line
