@@ -50,6 +50,7 @@ constexpr int kSaturatedCrossings = 2;       // a core crosses this many long sa
 constexpr int kSurfaceCrossings = 12;        // a saturated surface holds this many crossings
 constexpr int kSaturatedReach = 10;          // steps from a core over its blurred edges
 constexpr float kSaturatedLineThick = 2.0f;  // line sizes: thinner between field is a line, clipped or not
+constexpr float kNearClip = 0.05f;           // near-clipped: the brightest channel this close below the level
 // White.
 constexpr double kWhiteGain = 0.2;         // at least this much brighter than the field's median
 constexpr double kWhiteRatio = 0.8;        // chroma / luminance below this fraction of the field's
@@ -156,6 +157,7 @@ class Regionizer {
       classifyWhite(out.horizontal, verticalCount_, out.fieldColour);
       markSaturated(out);
       markWideWhite(out);
+      markNearClipped(out);
     } else {
       for (auto* lines : {&out.vertical, &out.horizontal})
         for (ScanLine& line : *lines)
@@ -810,6 +812,32 @@ class Regionizer {
       });
     }
     setClass(out, surface, RegionClass::Field);
+  }
+
+  // --- Near the clipping level (ScanLineRegionizer.h, step 3d) -------------------------------
+  // Where a region's brightest channel is at or just below this image's clipping level, the
+  // sensor has cut that channel and the others catch up: what is left of its chroma is a lower
+  // bound, not a measurement. A sunlit carpet whose green clips keeps a trace of the field's hue
+  // and looks white by colour; a line at the clipping level is R = G = B, without hue. So white
+  // there, more than two line sizes thick, in the field's hue about the white point, is Unknown:
+  // neither white nor field, no line spot and no field colour comes from it.
+  void markNearClipped(ScanLineRegions& out) {
+    if (out.saturationLevel < 0) return;
+    const float clip = static_cast<float>(out.saturationLevel);
+    std::vector<char> flagged(stats_.size(), 0);
+    std::size_t g = 0;
+    for (auto* lines : {&out.vertical, &out.horizontal})
+      for (ScanLine& line : *lines)
+        for (ScanRegion& r : line.regions) {
+          const RegionStats& s = stats_[g];
+          // The brightest channel (RGB is linear in YUV: that of the region's mean colour).
+          const float du = s.u - 128, dv = s.v - 128;
+          const float top = std::max({s.y + 1.402f * dv, s.y - 0.344f * du - 0.714f * dv, s.y + 1.772f * du});
+          flagged[g++] = r.cls == RegionClass::White && s.thick > kSaturatedLineThick &&
+                         top >= (1 - kNearClip) * clip && top <= clip + 3 * kSaturatedTolerance &&
+                         fieldHueAboutWhite(out.fieldColour, s);
+        }
+    setClass(out, flagged, RegionClass::Unknown);
   }
 
   // --- Sensor saturation (ScanLineRegionizer.h, step 3b) -------------------------------------

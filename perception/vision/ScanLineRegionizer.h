@@ -36,6 +36,12 @@
 //    line widths wide on the ground is no paint (a line is one width wide at any angle): in the
 //    field's hue about the white point -- a washed-out sunlit carpet between shadow stripes, as
 //    in real image 00159 -- it is field.
+// 3d. Near the clipping level: where a region's brightest channel is within kNearClip (5 %)
+//    below this image's clipping level, the sensor has cut that channel and its chroma is a
+//    lower bound, not a measurement. White there, more than two line sizes thick and in the
+//    field's hue about the white point (sunlit carpet whose green clips, touching a foot or a
+//    robot, where step 3c cannot measure its width), is left Unknown like a clipped area. A line
+//    at the clipping level is R = G = B, without hue, and stays white.
 // 4. Cleanup: white specks much thinner than a line between field are field; same-class
 //    neighbours on a line merge; small gaps between a field and a white region are split
 //    between them.
