@@ -40,6 +40,12 @@ double towards(double value, double target, double maxDelta) {
 
 double meanAngle(double a, double b) { return Pose2::wrap(a + Pose2::wrap(b - a) / 2); }
 
+// The rotation about `v` by |v| (a rotation vector).
+Eigen::Matrix3d rotationOf(const Vector3d& v) {
+  const double angle = v.norm();
+  return Eigen::AngleAxisd(angle, angle > 1e-12 ? Vector3d(v / angle) : Vector3d::UnitZ()).toRotationMatrix();
+}
+
 // The rate of the torso's yaw (ZYX Euler angles, the robot frame's heading) from the body
 // rates: psi' = (q sin(roll) + r cos(roll)) / cos(pitch). Not the vertical component of the
 // angular velocity: with the torso rocking in roll and pitch each step, that one accumulates a
@@ -445,9 +451,7 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
   Eigen::Matrix3d corrL = Eigen::Matrix3d::Identity(), corrR = Eigen::Matrix3d::Identity();
   int swingSide = 0;
   const double decay = std::exp(-(frame.time - landTime_) / params_.landingCorrectionDecay);
-  const Eigen::Matrix3d landed = Eigen::AngleAxisd(decay * landCorrection_.norm(),
-                                                   landCorrection_.norm() > 1e-12 ? landCorrection_.normalized() : Vector3d::UnitX())
-                                     .toRotationMatrix();
+  const Eigen::Matrix3d landed = rotationOf(decay * landCorrection_);
   (landedLeft_ ? corrL : corrR) = landed;
   if (phase_ == Phase::Walking) {
     const double s = std::clamp(t_ / stepDuration_, 0.0, 1.0);
@@ -577,8 +581,7 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
   // stride's roll and yaw wobble: measured turning in place, it overstated every turn by
   // 0.12 % (1.4 deg in 1100 deg; this way 0.01 deg): after turning to a target behind it, a
   // 3 m walk-to ended 1 cm off across its path.
-  const Eigen::Vector3d rotation = dt * frame.inertial.gyroscope;
-  const Eigen::Matrix3d carried = lastTilt_ * Eigen::AngleAxisd(rotation.norm(), rotation.norm() > 1e-12 ? rotation.normalized() : Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d carried = lastTilt_ * rotationOf(dt * frame.inertial.gyroscope);
   const double turn = std::atan2(carried(1, 0), carried(0, 0));
   lastTilt_ = tilt;
   // The motion since the last cycle relative to the feet on the ground (a loaded foot does not
