@@ -16,5 +16,6 @@ int evalCommand(const Argv& args);
 int calibrateCommand(const Argv& args);
 int walkCommand(const Argv& args);
 int kickCommand(const Argv& args);
+int trainCommand(const Argv& args);
 
 }  // namespace nao::cli

@@ -9,6 +9,7 @@
 #include "controllers/RobotProgram.h"
 #include "perception/calibration/CalibrationStore.h"
 #include "perception/FieldDimensions.h"
+#include "perception/vision/BallClassifier.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
 #include "robot/nao/GameController.h"
@@ -109,6 +110,8 @@ int runNao(const Args& args) {
   std::snprintf(size, sizeof size, " (%.2f x %.2f m)", field.length, field.width);
   logLine("run: field " + fieldPath + size);
   if (gcConfig.team == 0) logLine("run: no --team: GameController packets will be ignored");
+  // The ball classifier's weights: a missing or broken file stops the start too.
+  vision::defaultBallClassifier();
 
   NaoBackend::installSignalHandlers();
   GameController gameController(gcConfig, logLine);

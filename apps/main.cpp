@@ -25,6 +25,7 @@ const std::vector<Subcommand>& subcommands() {
       {"eval", "accuracy against ground truth over random cases (perception, calibration)", nao::cli::evalCommand},
       {"walk", "walk in the simulator (a speed, or --to a target): distance, speed, falls, odometry error", nao::cli::walkCommand},
       {"kick", "kick the ball in the simulator (--trials N): ball travel, direction error, falls", nao::cli::kickCommand},
+      {"train", "train the ball classifier from simulated images (train ball)", nao::cli::trainCommand},
       {"calibrate", "calibrate the six camera offsets at the goal box (sim): true vs estimated", nao::cli::calibrateCommand},
   };
   return list;

@@ -18,6 +18,7 @@
 #include "sim/ImageIO.h"
 #include "sim/SceneBuilder.h"
 #include "sim/World.h"
+#include "scenarios/RandomView.h"
 
 namespace nao::sim {
 
@@ -309,14 +310,10 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
 
   for (int trial = 0; trial < options.trials; ++trial) {
     // A random scene: pose anywhere on the field, head anywhere in its usual range.
-    const Eigen::Vector3d pose(uniform(-field.halfLength(), field.halfLength()),
-                               uniform(-field.halfWidth(), field.halfWidth()), uniform(-M_PI, M_PI));
-    JointArray posture = StandController::standPosture();
-    posture[HeadYaw] = uniform(-100, 100) * kDeg;
-    posture[HeadPitch] = uniform(-15, 25) * kDeg;
-    std::array<double, 6> off{};
-    for (double& v : off) v = uniform(-options.maxOffsetDeg, options.maxOffsetDeg) * kDeg;
-    const CameraCalibration offsets = CameraCalibration::fromArray(off);
+    const RandomView view = randomView(field, options.maxOffsetDeg, rng);
+    const Eigen::Vector3d& pose = view.pose;
+    const JointArray& posture = view.posture;
+    const CameraCalibration& offsets = view.offsets;
     world.setMiscalibration(0, offsets);
     world.placeRobot(0, pose, posture);
     // The ball: mostly somewhere in front of the head, at any distance up to 6 m.

@@ -83,6 +83,14 @@ TEST(Cli, BadLighting) { expectOneLineError(run("render --lighting intensity=-1"
 
 TEST(Cli, BadMiscalibration) { expectOneLineError(run("render --miscalibration 1,2,3" + kOut), "--miscalibration"); }
 
+TEST(Cli, TrainNeedsATarget) { expectOneLineError(run("train"), "train", "ball"); }
+
+TEST(Cli, TrainTooFewScenes) { expectOneLineError(run("train ball --scenes 2"), "--scenes"); }
+
+TEST(Cli, TrainCorruptSamples) {
+  expectOneLineError(run("train ball --samples " + tempFile("samples.bin", "BSM1 but not really")), "samples.bin");
+}
+
 TEST(Cli, HelpExitsZero) {
   const Result r = run("render --help");
   EXPECT_EQ(r.code, 0);

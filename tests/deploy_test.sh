@@ -28,7 +28,8 @@ echo "$out"
 stage="$tmp/build/deploy-stage"
 echo "$out" | grep -Eq "rsync +-az +--delete +--exclude +config/calibration/ +$stage/ +nao@nao-12.local:nao-soccer/" ||
   fail "no rsync to nao@nao-12.local:nao-soccer/ that keeps the robot's config/calibration/"
-for f in bin/nao-soccer bin/nao-soccer-start nao-soccer.service nao-soccer.env config/field_dimensions.json; do
+for f in bin/nao-soccer bin/nao-soccer-start nao-soccer.service nao-soccer.env config/field_dimensions.json \
+  models/vision/ball_classifier.yml; do
   [ -f "$stage/$f" ] || fail "$f is not staged"
 done
 if [ ! -x "$stage/bin/nao-soccer" ] || [ ! -x "$stage/bin/nao-soccer-start" ]; then fail "the staged programs are not executable"; fi

@@ -45,17 +45,29 @@ void printBallCandidates(const CameraImage& img, const CameraMatrix& cm, const M
               field.hueMin, field.hueMax, field.satMin, field.yMin, field.yMax, field.fieldY, field.whiteU,
               field.whiteV, field.fieldRelSatPerY);
   std::vector<vision::BallCandidate> cands;
-  vision::detectBall(img, seg.regions, field, seg.obstacles, cm, vision::BallParams{}, &cands);
+  vision::BallParams params;
+  params.classifier = &vision::defaultBallClassifier();
+  vision::detectBall(img, seg.regions, field, seg.obstacles, cm, params, &cands);
+  // The classifier's score on circles about each masked ball: where would it say "ball"?
+  for (const MaskBall& b : mask.balls) {
+    std::printf("  classifier about (%.0f,%.0f) r %.0f:", b.centre.x(), b.centre.y(), b.radius);
+    for (double k : {0.8, 1.0, 1.2})
+      for (int dy = -4; dy <= 4; dy += 4)
+        for (int dx = -4; dx <= 4; dx += 4)
+          std::printf(" %.2f", params.classifier->score(img, b.centre + Eigen::Vector2d(dx, dy), k * b.radius));
+    std::printf("\n");
+  }
   for (const auto& c : cands) {
     bool near = c.accepted;
     for (const MaskBall& b : mask.balls) near = near || (c.seed - b.centre).norm() < 2.5 * b.radius;
     if (!near) continue;
     std::printf("  cand seed (%.0f,%.0f) r %.1f prio %d %s%s -> %s; circle (%.1f,%.1f) r %.1f inl %d off %d contrast %.2f "
-                "dark %.2f pattern %.3f fieldIn %.2f around %.2f sat %.1f/%.1f support %.2f bright %.0f%s\n",
+                "dark %.2f pattern %.3f fieldIn %.2f around %.2f sat %.1f/%.1f support %.2f bright %.0f surround %.0f learned %.2f%s%s\n",
                 c.seed.x(), c.seed.y(), c.expectedRadius, c.priority, c.alongVertical ? "V" : "H",
                 c.fromPatch ? " patch" : "", c.accepted ? "ACCEPTED" : c.rejectedBy, c.centre.x(), c.centre.y(),
                 c.radius, c.inliers, c.offImage, c.contrast, c.darkRatio, c.pattern, c.fieldInside, c.fieldAround,
-                c.satInside, c.satAround, c.support, c.bright, c.byBrightOutline ? " (bright outline)" : "");
+                c.satInside, c.satAround, c.support, c.bright, c.surround, c.learned, c.byBrightOutline ? " (bright outline)" : "",
+                c.byClassifier ? " (by the classifier)" : "");
     if (const char* level = std::getenv("NAO_BALLDEBUG"); level && level[0] == '2') {
       std::printf("    outline:");
       for (const auto& p : c.outline) std::printf(" (%.0f,%.0f)", p.x(), p.y());
@@ -88,7 +100,7 @@ TEST(RealImages, EveryBallFoundAndNoFalseBall) {
                               : onMaskBall(r2.ball, e.mask.ball)                          ? "another mask ball"
                                                                                           : "FALSE";
         std::printf("  pitch %+.1f deg: %s (%.0f, %.0f)\n", d, verdict, r2.ball.image.x(), r2.ball.image.y());
-        if (r2.ball.seen && !onMaskBall(r2.ball, e.mask.ball)) printBallCandidates(e.image, cm2, e.mask);
+        if ((r2.ball.seen && !onMaskBall(r2.ball, e.mask.ball)) || (!r2.ball.seen && std::getenv("NAO_BALLDEBUG"))) printBallCandidates(e.image, cm2, e.mask);
       }
     }
     // No false ball: a ball percept lies on one of the mask's balls.

@@ -55,15 +55,6 @@ class FieldTest {
   double loU_ = 1, loV_ = 0, hiU_ = 1, hiV_ = 0, minChroma2_ = 0, relSatPerY2_ = 0, satMin2_ = 0;
 };
 
-// The luminance alone, bilinear like sampleColour.
-double sampleY(const CameraImage& img, double x, double y) {
-  const double fx = std::clamp(x - 0.5, 0.0, img.width - 1.001), fy = std::clamp(y - 0.5, 0.0, img.height - 1.001);
-  const int x0 = std::min(static_cast<int>(fx), img.width - 2), y0 = std::min(static_cast<int>(fy), img.height - 2);
-  const double ax = fx - x0, ay = fy - y0;
-  return (1 - ay) * ((1 - ax) * img.y(x0, y0) + ax * img.y(x0 + 1, y0)) +
-         ay * ((1 - ax) * img.y(x0, y0 + 1) + ax * img.y(x0 + 1, y0 + 1));
-}
-
 // Unit vectors at 2 pi (k + phase) / n, k = 0..n-1, computed once.
 template <int N, int PhaseTimes2>
 const std::array<Eigen::Vector2d, N>& directions() {
@@ -179,7 +170,7 @@ Outline castBrightRays(const CameraImage& img, const Eigen::Vector2d& origin, do
   for (double rr : {0.3, 0.6})
     for (const Eigen::Vector2d& d : directions<24, 0>()) {
       const Eigen::Vector2d p = origin + rr * expectedR * d;
-      if (insideImage(img, p.x(), p.y(), 0.5)) ys[n++] = sampleY(img, p.x(), p.y());
+      if (insideImage(img, p.x(), p.y(), 0.5)) ys[n++] = sampleLuminance(img, p.x(), p.y());
     }
   if (n < 12) return o;
   std::nth_element(ys.begin(), ys.begin() + n * 8 / 10, ys.begin() + n);
@@ -195,7 +186,7 @@ Outline castBrightRays(const CameraImage& img, const Eigen::Vector2d& origin, do
         left = true;
         break;
       }
-      if (sampleY(img, p.x(), p.y()) >= level) {
+      if (sampleLuminance(img, p.x(), p.y()) >= level) {
         lastBright = t;
         darkAfter = 0;
       } else if (lastBright > 0 && ++darkAfter * step > 0.3 * expectedR) {
@@ -374,19 +365,25 @@ Inside measureInside(const CameraImage& img, const FieldReference& field, const 
 struct Around {
   int n = 0, field = 0;
   double relSat = 0;  // mean over the field samples
+  double y = 0;       // median luminance
 };
 
 Around measureAround(const CameraImage& img, const FieldReference& field, const FieldTest& onField,
                      const Circle& circle) {
   Around ar;
+  std::array<double, 16> ys{};
   for (const Eigen::Vector2d& d : directions<16, 0>()) {
     const Eigen::Vector2d p = circle.c + 1.4 * circle.r * d;
     if (!insideImage(img, p.x(), p.y(), 0.5)) continue;
     const PixelColour col = sampleColour(img, p.x(), p.y());
-    ++ar.n;
+    ys[ar.n++] = col.y;
     if (onField(col)) ++ar.field, ar.relSat += field.relSat(col);
   }
   if (ar.field) ar.relSat /= ar.field;
+  if (ar.n) {
+    std::nth_element(ys.begin(), ys.begin() + ar.n / 2, ys.begin() + ar.n);
+    ar.y = ys[ar.n / 2];
+  }
   return ar;
 }
 
@@ -556,6 +553,7 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
 
   // 2. Verification.
   std::vector<Circle> measured;  // circles already measured (several seeds find the same ball)
+  bool bestByClassifier = false;
   for (BallCandidate& c : cands) {
     bool duplicate = false;
     for (const Circle& m : measured) duplicate = duplicate || (c.seed - m.c).norm() < 0.5 * m.r;
@@ -590,10 +588,8 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
     c.pattern = in.pattern, c.satInside = in.relSat;
     c.fieldAround = ar.n ? static_cast<double>(ar.field) / ar.n : 0;
     c.satAround = ar.relSat;
-    if (in.fieldRatio > params.maxFieldInside) {
-      c.rejectedBy = "field inside";
-      continue;
-    }
+    c.surround = ar.y;
+    // Hard figures: a ball has black patches (contrast, a dark share) and lies on the field.
     if (in.contrast < params.minContrast) {
       c.rejectedBy = "contrast";
       continue;
@@ -606,29 +602,63 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
       c.rejectedBy = "not on field";
       continue;
     }
+    c.support = outlineSupport(image, onField, circle, in.white);
+    // Soft figures, the first that falls short.
+    static constexpr const char* kFieldInside = "field inside";
+    const char* soft = nullptr;
     // Grey: far less saturated (from this image's white point) than the field beside it. Not
     // "brighter than the field": a ball seen from its shaded side is darker than sunlit grass.
-    if (in.relSat > params.maxGreyness * ar.relSat) {
-      c.rejectedBy = "colour";
-      continue;
+    if (in.fieldRatio > params.maxFieldInside) {
+      soft = kFieldInside;
+    } else if (in.relSat > params.maxGreyness * ar.relSat) {
+      soft = "colour";
+    } else {
+      // A ball cut by the image border to less than the eval's three quarters shows only part
+      // of its pattern and outline: all of what is seen must be right.
+      const bool cut = visible < params.minVisible;
+      const bool outlineAll = c.inliers >= params.cutMinOutline * (kRays - c.offImage);
+      const bool patches = in.pattern >= params.minPattern;
+      const bool clear = patches && (cut ? in.contrast >= params.cutMinContrast && outlineAll &&
+                                               c.support >= params.cutMinSupport && c.fieldAround >= params.cutMinSupport
+                                         : in.contrast >= params.clearContrast &&
+                                               in.contrast + 0.5 * (c.support + c.fieldAround) >= params.clearEvidence);
+      const bool faint = visible >= 1 && c.offImage == 0 && in.pattern >= params.faintMinPattern &&
+                         in.darkRatio >= params.faintMinDark && in.darkRatio <= params.faintMaxDark &&
+                         c.support >= params.faintMinSupport && c.fieldAround >= params.faintMinAround &&
+                         circle.r >= params.faintMinRadiusPx;
+      if (!clear && !faint) soft = "evidence";
     }
-    c.support = outlineSupport(image, onField, circle, in.white);
-    // A ball cut by the image border to less than the eval's three quarters shows only part
-    // of its pattern and outline: all of what is seen must be right.
-    const bool cut = visible < params.minVisible;
-    const bool outlineAll = c.inliers >= params.cutMinOutline * (kRays - c.offImage);
-    const bool patches = in.pattern >= params.minPattern;
-    const bool clear = patches && (cut ? in.contrast >= params.cutMinContrast && outlineAll &&
-                                             c.support >= params.cutMinSupport && c.fieldAround >= params.cutMinSupport
-                                       : in.contrast >= params.clearContrast &&
-                                             in.contrast + 0.5 * (c.support + c.fieldAround) >= params.clearEvidence);
-    const bool faint = visible >= 1 && c.offImage == 0 && in.pattern >= params.faintMinPattern &&
-                       in.darkRatio >= params.faintMinDark && in.darkRatio <= params.faintMaxDark &&
-                       c.support >= params.faintMinSupport && c.fieldAround >= params.faintMinAround &&
-                       circle.r >= params.faintMinRadiusPx;
-    if (!clear && !faint) {
-      c.rejectedBy = "evidence";
-      continue;
+    if (soft) {
+      // The second opinion: only where the ball has taken the field's colour (lit from behind,
+      // by the light off the carpet), so that the colour the classical figures read is not its
+      // own; only on a whole circle in the image, big enough to show its patches.
+      // Where the outline is weak, the fit is off by up to half a radius: a circle that the
+      // network already half believes is looked at again a quarter radius and a tenth of the
+      // size around it, and the best of those counts.
+      if (params.classifier && soft == kFieldInside && in.fieldRatio <= params.learnedMaxFieldInside && visible >= 1 &&
+          c.offImage == 0 && circle.r >= params.learnedMinRadiusPx) {
+        c.learned = params.classifier->score(image, circle.c, circle.r);
+        if (c.learned >= params.learnedSearchScore && c.learned < params.minLearnedScore) {
+          Circle refined = circle;
+          for (double k : {0.9, 1.0, 1.1})
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                const Circle t{circle.c + 0.25 * circle.r * Eigen::Vector2d(dx, dy), k * circle.r};
+                if (!insideImage(image, t.c.x() - t.r, t.c.y() - t.r) || !insideImage(image, t.c.x() + t.r, t.c.y() + t.r))
+                  continue;
+                const double sc = params.classifier->score(image, t.c, t.r);
+                if (sc > c.learned) c.learned = sc, refined = t;
+              }
+          circle = refined;
+        }
+      }
+      if (c.learned < params.minLearnedScore) {
+        c.rejectedBy = soft;
+        continue;
+      }
+      c.byClassifier = true;
+      c.centre = circle.c;
+      c.radius = circle.r;
     }
     if (postAbove(image, onField, cm, circle, params.radius, in.white)) {
       c.rejectedBy = "post";
@@ -636,10 +666,14 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
     }
     c.accepted = true;
     c.score = in.contrast + c.support + c.fieldAround;
-    if (!best.seen || c.score > best.confidence) {
+    // A ball the classical figures accept beats one only the classifier accepts (its circle is
+    // the outline fit's, only searched about where the network half believed it).
+    if (!best.seen || (bestByClassifier && !c.byClassifier) ||
+        (bestByClassifier == c.byClassifier && c.score > best.confidence)) {
       const auto pos = cm.pixelToGround(circle.c, params.radius);
       if (!pos) continue;
       best.seen = true;
+      bestByClassifier = c.byClassifier;
       best.image = circle.c;
       best.radiusPx = circle.r;
       best.position = *pos;

@@ -28,6 +28,13 @@
 //    enough pixels for the shape to mean something; a partly hidden outline needs a clear
 //    pattern; a ball mostly cut off by the image border a clear pattern and all of its
 //    visible outline right.
+// 5. A second opinion (BallClassifier.h) where a ball's colour is not its own: rejected only
+//    for the field's colour inside it, a circle wholly in the image, at least
+//    learnedMinRadiusPx big, whose hard figures hold (outline, size, field around, contrast
+//    and dark share) may be accepted by a network trained on simulated, augmented patches
+//    of the luminance alone. A ball lit from behind needs it: its shaded side takes the
+//    carpet's tint, the sunlit carpet around it is as bright as its white, and no colour
+//    step marks its outline.
 // The position is where the centre's viewing ray meets the plane at ball-radius height.
 // Obstacle boxes are not used: a ball often lies right in front of a robot (or the robot's
 // own shoulder looms over it in the bottom camera), and the verifier tells a ball from a
@@ -35,6 +42,7 @@
 #include <vector>
 
 #include "perception/CameraModel.h"
+#include "perception/vision/BallClassifier.h"
 #include "perception/vision/ColourTests.h"
 #include "perception/vision/VisionTypes.h"
 
@@ -65,6 +73,17 @@ struct BallParams {
   // and all of the outline in the image on the circle, a border and on the field.
   double minVisible = 0.75;
   double cutMinContrast = 0.8, cutMinOutline = 0.85, cutMinSupport = 0.85;
+  // The second opinion (null: none).
+  const BallClassifier* classifier = nullptr;
+  double minLearnedScore = 0.9;   // of -1..1
+  double learnedSearchScore = 0.3;  // a circle scored at least this is searched about (see detectBall)
+  // Asked only about a ball rejected for the field's colour inside it, up to this share: lit
+  // from behind by the light off the carpet, its shaded side takes the carpet's tint, and the
+  // colour the classical figures read is not its own. Elsewhere it is not asked: measured on
+  // real images, it took a robot's shin on a lit field for a ball (0.97) -- the simulated
+  // robots it learned "not a ball" from are simpler shapes than a real NAO's legs.
+  double learnedMaxFieldInside = 0.5;
+  double learnedMinRadiusPx = 6;  // smaller, the patches are a pixel or two
 };
 
 struct BallCandidate {
@@ -85,6 +104,9 @@ struct BallCandidate {
   double pattern = 0;  // luminance left on rings inside after mean and gradient, / white
   int inliers = 0, offImage = 0;
   bool byBrightOutline = false;  // outlined by its bright parts (something other than field beside it)
+  double surround = 0;           // median luminance of the ring around the ball
+  double learned = -2;           // the classifier's score (-2: not asked)
+  bool byClassifier = false;     // accepted on the classifier's word
   std::vector<Eigen::Vector2d> outline;  // the outline points of the last fit (only when candidates are asked for)
 };
 

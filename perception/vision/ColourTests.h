@@ -37,6 +37,15 @@ inline PixelColour sampleColour(const CameraImage& img, double x, double y) {
   return c;
 }
 
+// The luminance alone, bilinear like sampleColour.
+inline double sampleLuminance(const CameraImage& img, double x, double y) {
+  const double fx = std::clamp(x - 0.5, 0.0, img.width - 1.001), fy = std::clamp(y - 0.5, 0.0, img.height - 1.001);
+  const int x0 = std::min(static_cast<int>(fx), img.width - 2), y0 = std::min(static_cast<int>(fy), img.height - 2);
+  const double ax = fx - x0, ay = fy - y0;
+  return (1 - ay) * ((1 - ax) * img.y(x0, y0) + ax * img.y(x0 + 1, y0)) +
+         ay * ((1 - ax) * img.y(x0, y0 + 1) + ax * img.y(x0 + 1, y0 + 1));
+}
+
 // The field colour of this image in the units the tests need (hue in radians of
 // atan2(v - 128, u - 128), chroma = |(u - 128, v - 128)|), and this image's white point: the
 // chroma per unit luminance of the brightest non-field things (lines, ball, robots). The

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "perception/vision/BallClassifier.h"
 #include "perception/vision/BallDetector.h"
 #include "perception/vision/CircleDetector.h"
 #include "perception/vision/FieldBoundaryDetector.h"
@@ -67,6 +68,7 @@ VisionResult runVision(const CameraImage& image, const CameraMatrix& cm, const V
 
   vision::BallParams ballParams;
   ballParams.radius = geometry.ballRadius;
+  ballParams.classifier = &vision::defaultBallClassifier();
   const vision::FieldReference field = vision::FieldReference::from(r.regions);
   r.ball = vision::detectBall(image, r.regions, field, r.obstacles, cm, ballParams);
   clock.stage("ball");

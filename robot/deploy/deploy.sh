@@ -56,8 +56,10 @@ binary="$build_dir/bin/nao-soccer"
 # The folder the robot gets, exactly: ~/nao-soccer = NAO_SOCCER_HOME.
 stage="$build_dir/deploy-stage"
 rm -rf "$stage"
-mkdir -p "$stage/bin" "$stage/config" "$stage/lib"
+mkdir -p "$stage/bin" "$stage/config" "$stage/lib" "$stage/models/vision"
 cp "$binary" "$stage/bin/nao-soccer"
+# The ball classifier's weights (perception/vision/BallClassifier.h).
+cp "$root/models/vision/ball_classifier.yml" "$stage/models/vision/"
 cp "$root/robot/deploy/nao-soccer-start" "$stage/bin/"
 cp "$root/robot/deploy/nao-soccer.service" "$stage/"
 cp "$field" "$stage/config/field_dimensions.json"

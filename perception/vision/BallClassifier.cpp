@@ -1,0 +1,131 @@
+#include "perception/vision/BallClassifier.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <opencv2/core/utility.hpp>
+#include <opencv2/ml.hpp>
+#include <opencv2/objdetect.hpp>
+
+#include "perception/vision/ColourTests.h"
+#include "robot/Error.h"
+#include "robot/Paths.h"
+
+namespace nao::vision {
+
+namespace {
+constexpr int kFeatures = kBallFeatures;
+constexpr float kMinSpread = 4.0F;  // luminance steps: sensor noise on a flat patch is not a pattern
+}  // namespace
+
+cv::Mat1f ballPatch(const CameraImage& image, const Eigen::Vector2d& centre, double radius) {
+  cv::Mat1f patch(kBallPatchSize, kBallPatchSize, 0.0F);
+  if (!image.valid() || image.width < 2 || image.height < 2 || !(radius > 0) || !centre.allFinite()) return patch;
+  const double side = 2 * kBallPatchHalf * radius, cell = side / kBallPatchSize;
+  const int k = std::clamp(static_cast<int>(std::ceil(cell / 1.5)), 1, 4);  // samples per cell and axis
+  const double x0 = centre.x() - side / 2, y0 = centre.y() - side / 2;
+  for (int r = 0; r < kBallPatchSize; ++r)
+    for (int c = 0; c < kBallPatchSize; ++c) {
+      double sum = 0;
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j)
+          sum += sampleLuminance(image, x0 + (c + (j + 0.5) / k) * cell, y0 + (r + (i + 0.5) / k) * cell);
+      patch(r, c) = static_cast<float>(sum / (k * k));
+    }
+  return patch;
+}
+
+cv::Mat1f ballFeatures(const cv::Mat1f& patch) {
+  // Normalised to its own mean and spread, then on the 8-bit scale the descriptor takes.
+  cv::Scalar mean, spread;
+  cv::meanStdDev(patch, mean, spread);
+  cv::Mat1b u8;
+  patch.convertTo(u8, CV_8U, 40.0 / std::max(spread[0], static_cast<double>(kMinSpread)),
+                  128 - 40.0 * mean[0] / std::max(spread[0], static_cast<double>(kMinSpread)));
+  // Cells of a quarter of the patch's side, blocks of two by two cells at half-block steps,
+  // 9 orientation bins of unsigned gradients (a dark disc on bright carpet reads as a white
+  // disc on dark). Each block is normalised on its own.
+  static const cv::HOGDescriptor hog(cv::Size(kBallPatchSize, kBallPatchSize), cv::Size(10, 10), cv::Size(5, 5),
+                                     cv::Size(5, 5), 9);
+  std::vector<float> descriptor;
+  hog.compute(u8, descriptor);
+  cv::Mat1f row(1, static_cast<int>(descriptor.size()));
+  std::copy(descriptor.begin(), descriptor.end(), row.begin());
+  return row;
+}
+
+BallClassifier::BallClassifier() = default;
+BallClassifier::~BallClassifier() = default;
+BallClassifier::BallClassifier(BallClassifier&&) noexcept = default;
+BallClassifier& BallClassifier::operator=(BallClassifier&&) noexcept = default;
+
+bool BallClassifier::valid() const { return mlp_ && mlp_->isTrained(); }
+
+BallClassifier BallClassifier::load(const std::string& path) {
+  if (!std::ifstream(path)) throw Error(path, "cannot read the ball classifier model");
+  BallClassifier c;
+  try {
+    c.mlp_ = cv::ml::ANN_MLP::load(path);
+  } catch (const cv::Exception& e) {
+    throw Error(path, "not a ball classifier model (OpenCV: " + e.msg.substr(0, e.msg.find('\n')) + ")");
+  }
+  if (!c.mlp_ || !c.mlp_->isTrained()) throw Error(path, "not a ball classifier model (no trained network in it)");
+  const cv::Mat layers = c.mlp_->getLayerSizes();
+  if (layers.total() < 3 || layers.type() != CV_32S || layers.at<int>(0) != kFeatures ||
+      layers.at<int>(static_cast<int>(layers.total()) - 1) != 1)
+    throw Error(path, "layer_sizes: must take " + std::to_string(kFeatures) + " inputs and give 1 output");
+  // Weights that are not numbers would give silent garbage.
+  for (int l = 0; l < static_cast<int>(layers.total()) + 2; ++l) {
+    const cv::Mat w = c.mlp_->getWeights(l);
+    if (!w.empty() && !cv::checkRange(w)) throw Error(path, "weights: not finite in layer " + std::to_string(l));
+  }
+  return c;
+}
+
+void BallClassifier::save(const std::string& path) const {
+  if (!valid()) throw Error(path, "no trained ball classifier to save");
+  try {
+    mlp_->save(path);
+  } catch (const cv::Exception& e) {
+    throw Error(path, "cannot write the ball classifier model (" + e.msg.substr(0, e.msg.find('\n')) + ")");
+  }
+}
+
+BallClassifier BallClassifier::train(const cv::Mat1f& features, const std::vector<int>& labels,
+                                     const TrainOptions& options) {
+  if (features.rows != static_cast<int>(labels.size()) || features.cols != kFeatures || features.rows < 2)
+    throw Error("train ball", "features and labels do not match");
+  cv::Mat1f responses(features.rows, 1);
+  for (int i = 0; i < features.rows; ++i) responses(i) = labels[i] ? 1.0F : -1.0F;
+  BallClassifier c;
+  c.mlp_ = cv::ml::ANN_MLP::create();
+  c.mlp_->setLayerSizes(cv::Mat1i({3, 1}, {kFeatures, options.hidden, 1}).reshape(1, 1));
+  c.mlp_->setActivationFunction(cv::ml::ANN_MLP::SIGMOID_SYM);
+  c.mlp_->setTrainMethod(cv::ml::ANN_MLP::RPROP, 0.1, FLT_EPSILON);
+  c.mlp_->setTermCriteria(cv::TermCriteria(cv::TermCriteria::MAX_ITER + cv::TermCriteria::EPS, options.iterations, 1e-7));
+  // The same seed, the same network: the initial weights come from OpenCV's global RNG, and
+  // one thread keeps the order of the sums fixed.
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  cv::theRNG().state = options.seed ? options.seed : 1;
+  const bool ok = c.mlp_->train(cv::ml::TrainData::create(features, cv::ml::ROW_SAMPLE, responses));
+  cv::setNumThreads(threads);
+  if (!ok || !c.valid()) throw Error("train ball", "the network did not train");
+  return c;
+}
+
+double BallClassifier::score(const cv::Mat1f& features) const {
+  if (!valid() || features.cols != kFeatures || features.rows != 1) return -1;
+  cv::Mat out;
+  mlp_->predict(features, out);
+  const float s = out.at<float>(0, 0);
+  return std::isfinite(s) ? std::clamp(static_cast<double>(s), -1.0, 1.0) : -1.0;
+}
+
+const BallClassifier& defaultBallClassifier() {
+  static const BallClassifier classifier = BallClassifier::load(dataPath("models/vision/ball_classifier.yml"));
+  return classifier;
+}
+
+}  // namespace nao::vision

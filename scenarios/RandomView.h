@@ -1,0 +1,40 @@
+#pragma once
+// A random observer for the vision's evaluations and its training: anywhere on the field,
+// facing anywhere, the head anywhere in its usual range, small camera offsets. The draws come
+// from rng in a fixed order, so a seed gives the same scenes in every user.
+#include <array>
+#include <cmath>
+#include <random>
+
+#include <Eigen/Core>
+
+#include "controllers/StandController.h"
+#include "perception/CameraCalibration.h"
+#include "perception/FieldDimensions.h"
+#include "robot/JointIds.h"
+
+namespace nao::sim {
+
+struct RandomView {
+  Eigen::Vector3d pose;  // field frame (x, y, theta)
+  JointArray posture;    // standing, the head turned
+  CameraCalibration offsets;
+};
+
+inline RandomView randomView(const FieldModel& field, double maxOffsetDeg, std::mt19937_64& rng) {
+  constexpr double kDeg = M_PI / 180;
+  std::uniform_real_distribution<double> uni(0, 1);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * uni(rng); };
+  RandomView v;
+  v.pose = Eigen::Vector3d(uniform(-field.halfLength(), field.halfLength()),
+                           uniform(-field.halfWidth(), field.halfWidth()), uniform(-M_PI, M_PI));
+  v.posture = StandController::standPosture();
+  v.posture[HeadYaw] = uniform(-100, 100) * kDeg;
+  v.posture[HeadPitch] = uniform(-15, 25) * kDeg;
+  std::array<double, 6> off{};
+  for (double& o : off) o = uniform(-maxOffsetDeg, maxOffsetDeg) * kDeg;
+  v.offsets = CameraCalibration::fromArray(off);
+  return v;
+}
+
+}  // namespace nao::sim
