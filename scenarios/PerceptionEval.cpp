@@ -78,6 +78,7 @@ struct FrameTruth {
   std::vector<VisibleLine> lines;  // >= 0.5 m visible within 4 m
   bool circleEligible = false;     // >= half of the circle in view within 3 m
   std::vector<VisibleBall> balls3, balls5;
+  bool penaltyMarkEligible = false;  // a penalty cross in view within 3 m, wholly in the image
 };
 
 FrameTruth computeTruth(const World& world, CameraId camera) {
@@ -99,6 +100,17 @@ FrameTruth computeTruth(const World& world, CameraId camera) {
     visible += trulyVisible(world, 0, camera, Eigen::Vector3d(p.x(), p.y(), 0.001), 3.0);
   }
   t.circleEligible = visible * 2 >= kSamples;
+  // The penalty cross: its centre truly visible within 3 m and its four arm ends in the image.
+  if (const auto c = visibleFeatures(world, 0, camera, 3.0).penaltyCross) {
+    const CameraResolution r = world.cameraResolution(camera);
+    bool whole = true;
+    for (const Eigen::Vector2d& d : {Eigen::Vector2d(0.05, 0), Eigen::Vector2d(-0.05, 0), Eigen::Vector2d(0, 0.05),
+                                    Eigen::Vector2d(0, -0.05)}) {
+      const auto px = truePixel(world, 0, camera, Eigen::Vector3d(c->x() + d.x(), c->y() + d.y(), 0.001));
+      whole = whole && px && px->x() >= 0 && px->y() >= 0 && px->x() < r.width && px->y() < r.height;
+    }
+    t.penaltyMarkEligible = whole;
+  }
   // Balls: in view (not hidden) with at least 75 % of the disc on the image.
   const CameraResolution res = world.cameraResolution(camera);
   const VisibleFeatures vb = visibleFeatures(world, 0, camera, 5.0);
@@ -180,10 +192,16 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
         break;
       }
   }
+  bool markRight = false;
   if (r.lines.penaltyMark) {
     ++fig.penaltyMarks;
     const Eigen::Vector2d p = robotToField(*r.lines.penaltyMark, robotPose);
-    for (const auto& c : field.penaltyCrosses) fig.penaltyMarksCorrect += (c - p).norm() < 0.3;
+    for (const auto& c : field.penaltyCrosses) markRight = markRight || (c - p).norm() < 0.3;
+    fig.penaltyMarksCorrect += markRight;
+  }
+  if (truth.penaltyMarkEligible) {
+    ++fig.penaltyMarkFrames;
+    fig.penaltyMarkFound += markRight;
   }
   // Ball.
   const Eigen::Vector2d camFoot = world.cameraPose(0, camera).translation().head<2>();
@@ -232,6 +250,7 @@ void PerceptionFigures::add(const PerceptionFigures& o) {
   ballErrorRatios.insert(ballErrorRatios.end(), o.ballErrorRatios.begin(), o.ballErrorRatios.end());
   intersections += o.intersections, intersectionsCorrect += o.intersectionsCorrect;
   penaltyMarks += o.penaltyMarks, penaltyMarksCorrect += o.penaltyMarksCorrect;
+  penaltyMarkFrames += o.penaltyMarkFrames, penaltyMarkFound += o.penaltyMarkFound;
 }
 
 nlohmann::json PerceptionFigures::toJson() const {
@@ -262,7 +281,9 @@ nlohmann::json PerceptionFigures::toJson() const {
             {"precision", intersections ? double(intersectionsCorrect) / intersections : 1.0}}},
           {"penalty_mark",
            {{"detections", penaltyMarks},
-            {"precision", penaltyMarks ? double(penaltyMarksCorrect) / penaltyMarks : 1.0}}}};
+            {"precision", penaltyMarks ? double(penaltyMarksCorrect) / penaltyMarks : 1.0},
+            {"frames_in_view", penaltyMarkFrames},
+            {"recall", penaltyMarkFrames ? double(penaltyMarkFound) / penaltyMarkFrames : 1.0}}}};
 }
 
 nlohmann::json PerceptionEvalResult::toJson() const {

@@ -63,18 +63,24 @@ std::optional<Eigen::Vector2d> detectPenaltyMark(const CameraImage& image, const
       const Eigen::Vector2d centre(0.5 * (x0 + x1), 0.5 * (y0 + y1));
       gs = groundScale(cm, centre, params.size);
       if (!gs.valid || h < params.minSizeRatio * gs.alongPx || h > params.maxSizeRatio * gs.alongPx + 1.5) continue;
-      // The field all around, on the ground.
-      int inView = 0, fieldCount = 0;
-      constexpr int kRing = 12;
-      for (int k = 0; k < kRing; ++k) {
-        const double a = 2 * M_PI * k / kRing;
-        const auto q = cm.projectGround(gs.ground + params.ringRadius * Eigen::Vector2d(std::cos(a), std::sin(a)));
-        if (!q || !insideImage(image, q->x(), q->y(), 1)) continue;
-        ++inView;
-        const PixelColour c = sampleColour(image, q->x(), q->y());
-        fieldCount += field.isField(c) && c.y < threshold;
+      // The field all around, on the ground, on two rings dense enough that a line crossing
+      // them (5 cm) always covers a sample: a line's end, a junction or a piece of the circle
+      // that the line detector missed has white running out across them, a cross has none.
+      bool clear = true;
+      for (const double radius : params.ringRadii) {
+        constexpr int kRing = 36;
+        int inView = 0, notField = 0;
+        for (int k = 0; k < kRing; ++k) {
+          const double a = 2 * M_PI * k / kRing;
+          const auto q = cm.projectGround(gs.ground + radius * Eigen::Vector2d(std::cos(a), std::sin(a)));
+          if (!q || !insideImage(image, q->x(), q->y(), 1)) continue;
+          ++inView;
+          const PixelColour c = sampleColour(image, q->x(), q->y());
+          notField += !(field.isField(c) && c.y < threshold);
+        }
+        clear = clear && inView >= params.minRingInView * kRing && notField <= params.maxRingMisses;
       }
-      if (inView < kRing / 2 || fieldCount < params.minFieldRatio * inView) continue;
+      if (!clear) continue;
       if (imagePos) *imagePos = centre;
       return gs.ground;
     }

@@ -1,8 +1,10 @@
 #pragma once
 // The penalty cross: a white blob on a vertical scan line as tall as the cross is there,
-// as wide as the cross along its image row, surrounded by field colour on a ring around it
-// on the ground, and away from every detected line (which also rules out the centre mark on
-// the halfway line).
+// as wide as the cross along its image row, surrounded by field colour on two rings around it
+// on the ground (at most one sample of each not field, at least three quarters of each in
+// view), and away from every detected line (which also rules out the centre mark on the
+// halfway line).
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -15,8 +17,9 @@ namespace nao::vision {
 struct PenaltyMarkParams {
   double size = 0.1;          // m, the cross's extent (FieldDimensions::penaltyCrossSize)
   double minSizeRatio = 0.4, maxSizeRatio = 1.9;
-  double ringRadius = 0.17;   // m, where the surrounding field is tested
-  double minFieldRatio = 0.8; // of the ring samples in view
+  std::array<double, 2> ringRadii{0.17, 0.3};  // m, where the surrounding field is tested
+  double minRingInView = 0.75;  // of each ring's samples
+  int maxRingMisses = 1;        // samples on a ring that are not field (noise, a shadow's edge)
   double lineClearance = 0.25;  // m from every detected line
   double maxDistance = 5;     // m
 };
