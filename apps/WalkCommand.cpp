@@ -20,7 +20,12 @@ constexpr double kDeg = M_PI / 180;
 
 nlohmann::json variationJson(const sim::AppliedVariation& v) {
   if (!v.randomized) return nullptr;
-  return {{"total_mass_kg", v.totalMass}, {"floor_friction", v.friction}, {"max_joint_offset_deg", v.maxJointOffset / kDeg}};
+  nlohmann::json offsets = nlohmann::json::object();
+  for (int j = 0; j < NumJoints; ++j) offsets[std::string(kJointNames[j])] = v.jointOffsets[j] / kDeg;
+  return {{"total_mass_kg", v.totalMass},
+          {"floor_friction", v.friction},
+          {"max_joint_offset_deg", v.maxJointOffset / kDeg},
+          {"joint_offsets_deg", offsets}};
 }
 
 FieldDimensions motionFieldFrom(const Args& args) {

@@ -52,6 +52,7 @@ AppliedVariation applyVariation(World& world, int robot, const RobotVariation& v
     out.maxJointOffset = std::max(out.maxJointOffset, std::abs(offsets[j]));
   }
   world.setJointOffsets(robot, offsets);
+  out.jointOffsets = offsets;
   out.friction = std::uniform_real_distribution<double>(v.frictionMin, v.frictionMax)(rng);
   world.setFloorFriction(out.friction);
   return out;

@@ -35,6 +35,7 @@ struct AppliedVariation {
   double totalMass = 0;  // kg
   double friction = 1.0;
   double maxJointOffset = 0;  // rad
+  JointArray jointOffsets{};  // rad, true angle = reading + offset
 };
 
 // A practice hall for motion trials: an SPL-style field of 24 m x 16 m, so that 30 s of walking
