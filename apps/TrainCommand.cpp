@@ -34,19 +34,20 @@ int trainCommand(const Argv& argv) {
   o.scenes = static_cast<int>(args.integer("scenes", 1500));
   if (o.scenes < 5 || o.scenes > 100000) throw Error("--scenes", "must be in 5..100000");
   o.lightingsPerScene = static_cast<int>(args.integer("lightings", 2));
-  if (o.lightingsPerScene < 1 || o.lightingsPerScene > 20) throw Error("--lightings", "must be in 1..20");
+  if (o.lightingsPerScene < 1 || o.lightingsPerScene > 5) throw Error("--lightings", "must be in 1..5");
   o.network.hidden = static_cast<int>(args.integer("hidden", 16));
   if (o.network.hidden < 2 || o.network.hidden > 1000) throw Error("--hidden", "must be in 2..1000");
   o.network.iterations = static_cast<int>(args.integer("iterations", 200));
   if (o.network.iterations < 1 || o.network.iterations > 100000) throw Error("--iterations", "must be in 1..100000");
   o.seed = args.seed();
-  o.network.seed = o.seed;
   o.progress = [](int done, int total) { progress("train ball: rendering", done, total); };
   const std::string out = args.str("out", dataPath("models/vision/ball_classifier.yml"));
   sim::BallSamples samples;
   const std::string cache = args.str("samples", "");
   if (!cache.empty() && std::ifstream(cache)) {
     samples = sim::BallSamples::load(cache);
+    std::fprintf(stderr, "train ball: %zu samples from %s (rendered before: --scenes, --lightings and --seed do not apply)\n",
+                 samples.patches.size(), cache.c_str());
   } else {
     samples = sim::renderBallSamples(o);
     if (!cache.empty()) samples.save(cache);

@@ -26,6 +26,7 @@ using vision::kBallPatchHalf;
 using vision::kBallPatchSize;
 
 constexpr double kDeg = M_PI / 180;
+constexpr std::int32_t kSamplesMagic = 0x42534d31;  // the samples file's first int (native byte order)
 constexpr int kOtherRobots = 3;
 
 // A random light: any level and colour of the sweep's range, the sun from anywhere (low and
@@ -78,7 +79,7 @@ cv::Mat1f augmentBallPatch(const cv::Mat1f& raw, std::mt19937_64& rng) {
 
 void BallSamples::save(const std::string& path) const {
   std::ofstream f(path, std::ios::binary);
-  const std::int32_t header[3] = {0x42534d31, static_cast<std::int32_t>(patches.size()), frames};  // "BSM1"
+  const std::int32_t header[3] = {kSamplesMagic, static_cast<std::int32_t>(patches.size()), frames};
   f.write(reinterpret_cast<const char*>(header), sizeof header);
   for (std::size_t i = 0; i < patches.size(); ++i) {
     const std::int32_t tags[2] = {labels[i], heldOut[i]};
@@ -93,7 +94,7 @@ BallSamples BallSamples::load(const std::string& path) {
   if (!f) throw Error(path, "cannot read the ball samples");
   std::int32_t header[3] = {};
   f.read(reinterpret_cast<char*>(header), sizeof header);
-  if (!f || header[0] != 0x42534d31 || header[1] < 0 || header[2] < 0) throw Error(path, "not a ball samples file");
+  if (!f || header[0] != kSamplesMagic || header[1] < 0 || header[2] < 0) throw Error(path, "not a ball samples file");
   BallSamples s;
   s.frames = header[2];
   for (int i = 0; i < header[1]; ++i) {
@@ -261,7 +262,7 @@ BallTrainingResult trainBallClassifier(const BallSamples& samples, const BallTra
   const auto at = rates(options.threshold);
   result.heldOutBallRate = at[1];
   result.heldOutFalseRate = at[2];
-  for (double t = -0.5; t < 0.95; t += 0.1) result.heldOutCurve.push_back(rates(t));
+  for (int i = 0; i <= 14; ++i) result.heldOutCurve.push_back(rates(-0.5 + 0.1 * i));
   return result;
 }
 

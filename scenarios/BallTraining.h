@@ -32,7 +32,7 @@ struct BallTrainingOptions {
   std::uint64_t seed = 1;
   FieldDimensions field;
   std::vector<Lighting> lightings;  // each scene is rendered under lightingsPerScene of them
-  int lightingsPerScene = 2;
+  int lightingsPerScene = 2;       // 1..5 (the sensor noise's seed spaces them by 5)
   int augmentations = 3;            // copies of each ball sample (the non-balls: 1)
   int maxNegativesPerFrame = 12;
   double threshold = 0.9;           // the score the held-out rates are reported at

@@ -1,7 +1,9 @@
 #pragma once
 // A random observer for the vision's evaluations and its training: anywhere on the field,
-// facing anywhere, the head anywhere in its usual range, small camera offsets. The draws come
-// from rng in a fixed order, so a seed gives the same scenes in every user.
+// facing anywhere, the head anywhere in its usual range, small camera offsets. Both users draw
+// from rng through this one function, so a seed gives them the same scenes. (The pose's three
+// draws are constructor arguments, whose order C++ leaves to the compiler: kept so, the
+// committed figures and model stay those of the GCC build that made them.)
 #include <array>
 #include <cmath>
 #include <random>

@@ -81,7 +81,6 @@ TEST(BallClassifier, TrainingIsDeterministicAndLearns) {
   o.seed = 7;
   o.lightingsPerScene = 1;
   o.network.iterations = 30;
-  o.network.seed = 7;
   const sim::BallSamples s = sim::renderBallSamples(o);
   const sim::BallTrainingResult a = sim::trainBallClassifier(s, o), b = sim::trainBallClassifier(s, o);
   ASSERT_TRUE(a.classifier.valid());
@@ -106,13 +105,14 @@ TEST(BallClassifier, TrainingIsDeterministicAndLearns) {
 }
 
 // A bad file is a one-line Error naming it, never a crash or a silently wrong model.
-void expectLoadError(const std::string& path, const std::string& what) {
+void expectLoadError(const std::string& path, const std::string& what, const std::string& says = "") {
   try {
     BallClassifier::load(path);
     ADD_FAILURE() << what << ": loaded";
   } catch (const Error& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find(path), std::string::npos) << what << ": " << m;
+    EXPECT_NE(m.find(says), std::string::npos) << what << ": " << m;
     EXPECT_EQ(m.find('\n'), std::string::npos) << what << ": " << m;
   }
 }
@@ -138,15 +138,25 @@ TEST(BallClassifier, MalformedModelFilesGiveOneLineErrors) {
   ASSERT_NE(num, std::string::npos);
   other.replace(num, 3, "325");
   writeFile(p, other);
-  expectLoadError(p, "layer sizes");
+  expectLoadError(p, "layer sizes", "layer_sizes");
+  // One weight fewer, the file still well-formed YAML (OpenCV alone would leave one
+  // uninitialised).
+  std::string shorter = good;
+  const auto w0 = shorter.find("weights");
+  ASSERT_NE(w0, std::string::npos);
+  const auto line = shorter.find("\n         - ", w0);
+  ASSERT_NE(line, std::string::npos);
+  shorter.erase(line, shorter.find('\n', line + 1) - line);
+  writeFile(p, shorter);
+  expectLoadError(p, "a weight missing", "weights[0]: needs");
   // A weight that is not a number.
   std::string nan = good;
   const auto w = nan.find("weights");
   ASSERT_NE(w, std::string::npos);
-  const auto digit = nan.find_first_of("0123456789", nan.find("[", w) + 1);
-  nan.insert(digit, ".nan, ");
+  const auto first = nan.find("\n         - ", w) + std::string("\n         - ").size();
+  nan.replace(first, nan.find('\n', first) - first, ".nan");
   writeFile(p, nan);
-  expectLoadError(p, "nan weight");
+  expectLoadError(p, "nan weight", "not finite");
 }
 
 TEST(BallClassifier, MalformedSampleFilesGiveOneLineErrors) {

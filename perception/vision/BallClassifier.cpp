@@ -17,13 +17,55 @@ namespace nao::vision {
 namespace {
 constexpr int kFeatures = kBallFeatures;
 constexpr float kMinSpread = 4.0F;  // luminance steps: sensor noise on a flat patch is not a pattern
+// OpenCV fills the network's matrices from the file without checking their lengths: a
+// damaged file that still parses would leave weights uninitialised. So every list must have
+// exactly the length the layer sizes give.
+void checkModelShape(const std::string& path) {
+  try {
+    cv::FileStorage fs(path, cv::FileStorage::READ);
+    const cv::FileNode net = fs["opencv_ml_ann_mlp"];
+    if (!fs.isOpened() || net.empty()) throw Error(path, "not a ball classifier model (no opencv_ml_ann_mlp)");
+    std::vector<int> layers;
+    net["layer_sizes"] >> layers;
+    if (layers.size() < 3 || layers.front() != kFeatures || layers.back() != 1 ||
+        std::any_of(layers.begin(), layers.end(), [](int n) { return n < 1 || n > 100000; }))
+      throw Error(path, "layer_sizes: must take " + std::to_string(kFeatures) + " inputs and give 1 output");
+    auto expectLength = [&](const cv::FileNode& node, std::size_t n, const std::string& name) {
+      if (!node.isSeq() || node.size() != n)
+        throw Error(path, name + ": needs " + std::to_string(n) + " values, has " + std::to_string(node.size()));
+    };
+    expectLength(net["input_scale"], 2 * static_cast<std::size_t>(layers.front()), "input_scale");
+    expectLength(net["output_scale"], 2, "output_scale");
+    expectLength(net["inv_output_scale"], 2, "inv_output_scale");
+    const cv::FileNode weights = net["weights"];
+    if (!weights.isSeq() || weights.size() != layers.size() - 1)
+      throw Error(path, "weights: needs " + std::to_string(layers.size() - 1) + " layers");
+    for (std::size_t i = 1; i < layers.size(); ++i)
+      expectLength(weights[static_cast<int>(i - 1)], static_cast<std::size_t>(layers[i - 1] + 1) * layers[i],
+                   "weights[" + std::to_string(i - 1) + "]");
+  } catch (const cv::Exception& e) {
+    throw Error(path, "not a ball classifier model (OpenCV: " + e.msg.substr(0, e.msg.find('\n')) + ")");
+  }
+}
+
+// OpenCV's thread count, restored however training ends.
+struct SingleThreaded {
+  int before = cv::getNumThreads();
+  SingleThreaded() { cv::setNumThreads(1); }
+  ~SingleThreaded() { cv::setNumThreads(before); }
+  SingleThreaded(const SingleThreaded&) = delete;
+  SingleThreaded& operator=(const SingleThreaded&) = delete;
+};
+
 }  // namespace
 
 cv::Mat1f ballPatch(const CameraImage& image, const Eigen::Vector2d& centre, double radius) {
   cv::Mat1f patch(kBallPatchSize, kBallPatchSize, 0.0F);
-  if (!image.valid() || image.width < 2 || image.height < 2 || !(radius > 0) || !centre.allFinite()) return patch;
+  if (!image.valid() || image.width < 2 || image.height < 2 || !(radius > 0) || !std::isfinite(radius) ||
+      !centre.allFinite())
+    return patch;
   const double side = 2 * kBallPatchHalf * radius, cell = side / kBallPatchSize;
-  const int k = std::clamp(static_cast<int>(std::ceil(cell / 1.5)), 1, 4);  // samples per cell and axis
+  const int k = static_cast<int>(std::clamp(std::ceil(cell / 1.5), 1.0, 4.0));  // samples per cell and axis
   const double x0 = centre.x() - side / 2, y0 = centre.y() - side / 2;
   for (int r = 0; r < kBallPatchSize; ++r)
     for (int c = 0; c < kBallPatchSize; ++c) {
@@ -64,6 +106,7 @@ bool BallClassifier::valid() const { return mlp_ && mlp_->isTrained(); }
 
 BallClassifier BallClassifier::load(const std::string& path) {
   if (!std::ifstream(path)) throw Error(path, "cannot read the ball classifier model");
+  checkModelShape(path);
   BallClassifier c;
   try {
     c.mlp_ = cv::ml::ANN_MLP::load(path);
@@ -104,13 +147,15 @@ BallClassifier BallClassifier::train(const cv::Mat1f& features, const std::vecto
   c.mlp_->setActivationFunction(cv::ml::ANN_MLP::SIGMOID_SYM);
   c.mlp_->setTrainMethod(cv::ml::ANN_MLP::RPROP, 0.1, FLT_EPSILON);
   c.mlp_->setTermCriteria(cv::TermCriteria(cv::TermCriteria::MAX_ITER + cv::TermCriteria::EPS, options.iterations, 1e-7));
-  // The same seed, the same network: the initial weights come from OpenCV's global RNG, and
-  // one thread keeps the order of the sums fixed.
-  const int threads = cv::getNumThreads();
-  cv::setNumThreads(1);
-  cv::theRNG().state = options.seed ? options.seed : 1;
-  const bool ok = c.mlp_->train(cv::ml::TrainData::create(features, cv::ml::ROW_SAMPLE, responses));
-  cv::setNumThreads(threads);
+  // The same samples, the same network: OpenCV starts every network from its own fixed random
+  // state (not the global one), and one thread keeps the order of the sums fixed.
+  bool ok = false;
+  try {
+    const SingleThreaded one;
+    ok = c.mlp_->train(cv::ml::TrainData::create(features, cv::ml::ROW_SAMPLE, responses));
+  } catch (const cv::Exception& e) {
+    throw Error("train ball", "OpenCV: " + e.msg.substr(0, e.msg.find('\n')));
+  }
   if (!ok || !c.valid()) throw Error("train ball", "the network did not train");
   return c;
 }

@@ -58,9 +58,9 @@ class BallClassifier {
   struct TrainOptions {
     int hidden = 16;          // neurons in the one hidden layer
     int iterations = 200;     // RPROP epochs (full batch)
-    std::uint64_t seed = 1;   // the initial weights
   };
-  // features: one row per sample (ballFeatures); labels: 1 ball, 0 not.
+  // features: one row per sample (ballFeatures); labels: 1 ball, 0 not. The same samples give
+  // the same network (OpenCV's own fixed initial weights, one thread).
   static BallClassifier train(const cv::Mat1f& features, const std::vector<int>& labels, const TrainOptions& options);
 
   bool valid() const;

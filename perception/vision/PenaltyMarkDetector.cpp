@@ -63,9 +63,11 @@ std::optional<Eigen::Vector2d> detectPenaltyMark(const CameraImage& image, const
       const Eigen::Vector2d centre(0.5 * (x0 + x1), 0.5 * (y0 + y1));
       gs = groundScale(cm, centre, params.size);
       if (!gs.valid || h < params.minSizeRatio * gs.alongPx || h > params.maxSizeRatio * gs.alongPx + 1.5) continue;
-      // The field all around, on the ground, on two rings dense enough that a line crossing
-      // them (5 cm) always covers a sample: a line's end, a junction or a piece of the circle
-      // that the line detector missed has white running out across them, a cross has none.
+      // The field all around, on the ground, on two rings: a line's end, a junction or a piece
+      // of the circle that the line detector missed has white running out across them, a cross
+      // has none. On the inner ring a line (5 cm) always covers a sample (3 cm apart); on the
+      // outer one (5.2 cm apart) it may fall between two. Denser outer rings (48 samples, or
+      // 40 at 0.25 m) lost the real cross of image 00123 (4 samples off the field there).
       bool clear = true;
       for (const double radius : params.ringRadii) {
         constexpr int kRing = 36;
