@@ -17,6 +17,7 @@
 #include "perception/vision/GoalBoxDetector.h"
 #include "perception/vision/IntersectionDetector.h"
 #include "perception/vision/LineDetector.h"
+#include "perception/vision/ScanLineRegionizer.h"
 #include "perception/vision/VisionPipeline.h"
 #include "robot/Paths.h"
 #include "sim/CameraRenderer.h"
@@ -158,14 +159,17 @@ TEST(CircleDetector, FindsTheCentreCircleAndReportsNoLinesOnIt) {
   EXPECT_TRUE(r.lines.lines.empty()) << r.lines.lines.size() << " lines on the circle";
 }
 
+// A detected line as the line detector would report it: ground ends and their pixels.
+LinesPercept::Line groundLine(const CameraMatrix& cm, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  LinesPercept::Line l;
+  l.from = a, l.to = b;
+  l.imageFrom = *cm.projectGround(a), l.imageTo = *cm.projectGround(b);
+  return l;
+}
+
 TEST(IntersectionDetector, TypesLTAndXOnTheGround) {
   const CameraMatrix cm = standingCamera(0, 15);
-  auto line = [&](Eigen::Vector2d a, Eigen::Vector2d b) {
-    LinesPercept::Line l;
-    l.from = a, l.to = b;
-    l.imageFrom = *cm.projectGround(a), l.imageTo = *cm.projectGround(b);
-    return l;
-  };
+  auto line = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return groundLine(cm, a, b); };
   using T = LinesPercept::Intersection::Type;
   const ObstaclesPercept none;
   // L: both end at (1.5, 0).
@@ -184,6 +188,30 @@ TEST(IntersectionDetector, TypesLTAndXOnTheGround) {
   // Parallel lines do not intersect; lines far apart do not either.
   EXPECT_TRUE(vision::detectIntersections({line({1.2, 0}, {2.2, 0}), line({1.2, 0.5}, {2.2, 0.5})}, cm, none).empty());
   EXPECT_TRUE(vision::detectIntersections({line({1.2, 0}, {1.6, 0}), line({2.4, -0.6}, {2.4, 0.6})}, cm, none).empty());
+}
+
+// A T whose crossbar the line detector found only on one side looks like an L; the image
+// shows the paint going on past the point, so it is not called one. A real L is still an L.
+TEST(IntersectionDetector, AMissedPieceBeyondAnEndIsNoEnd) {
+  const CameraMatrix cm = standingCamera(0, 15);
+  auto line = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return groundLine(cm, a, b); };
+  const ObstaclesPercept none;
+  // The paint: a T at (1.5, 0) -- the stem along x from the crossbar, the crossbar along y.
+  const CameraImage tImage = syntheticImage(cm, linesPaint({{{1.5, 0}, {2.5, 0}}, {{1.5, -0.6}, {1.5, 0.6}}}));
+  const vision::FieldReference field = vision::FieldReference::from(segmentField(tImage, cm).regions);
+  ASSERT_TRUE(field.valid);
+  // Detected: the stem and only the crossbar's left half (ending at the T).
+  const std::vector<LinesPercept::Line> seen = {line({1.5, 0}, {2.5, 0}), line({1.5, 0}, {1.5, 0.6})};
+  const auto blind = vision::detectIntersections(seen, cm, none);
+  ASSERT_EQ(blind.size(), 1u);
+  EXPECT_EQ(blind[0].type, LinesPercept::Intersection::Type::L);  // from the lines alone
+  EXPECT_TRUE(vision::detectIntersections(seen, cm, none, {}, &tImage, &field).empty());
+  // The same two lines where the paint is an L: an L.
+  const CameraImage lImage = syntheticImage(cm, linesPaint({{{1.5, 0}, {2.5, 0}}, {{1.5, 0}, {1.5, 0.6}}}));
+  const vision::FieldReference lField = vision::FieldReference::from(segmentField(lImage, cm).regions);
+  const auto xs = vision::detectIntersections(seen, cm, none, {}, &lImage, &lField);
+  ASSERT_EQ(xs.size(), 1u);
+  EXPECT_EQ(xs[0].type, LinesPercept::Intersection::Type::L);
 }
 
 TEST(GoalBoxDetector, AShortLineJoiningTwoLongLines) {

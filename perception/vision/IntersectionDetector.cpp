@@ -23,12 +23,31 @@ Role roleOf(const LinesPercept::Line& line, double t, double length, double marg
   return Role::End;
 }
 
+// Does the line go on past the point p (ground) in direction dir? White (not field, brighter
+// than the field) on most samples of its course beyond the other line's paint; too few samples
+// in the image to tell counts as going on.
+bool continuesBeyond(const Eigen::Vector2d& p, const Eigen::Vector2d& dir, const CameraMatrix& cm,
+                     const CameraImage& image, const FieldReference& field, const IntersectionParams& params) {
+  constexpr int kSamples = 5;
+  int inView = 0, white = 0;
+  for (int k = 0; k < kSamples; ++k) {
+    const double d = params.beyondFrom + (params.beyondTo - params.beyondFrom) * k / (kSamples - 1);
+    const auto q = cm.projectGround(p + d * dir);
+    if (!q || !insideImage(image, q->x(), q->y(), 1)) continue;
+    ++inView;
+    const PixelColour c = sampleColour(image, q->x(), q->y());
+    white += !field.isField(c) && c.y > field.fieldY;
+  }
+  return inView < 3 || white > params.maxWhiteBeyond * inView;
+}
+
 }  // namespace
 
 std::vector<LinesPercept::Intersection> detectIntersections(const std::vector<LinesPercept::Line>& lines,
                                                              const CameraMatrix& cm,
                                                              const ObstaclesPercept& obstacles,
-                                                             const IntersectionParams& params) {
+                                                             const IntersectionParams& params,
+                                                             const CameraImage* image, const FieldReference* field) {
   std::vector<LinesPercept::Intersection> out;
   const double maxCos = std::sin(params.maxAngleErrorDeg * M_PI / 180);
   for (int i = 0; i < static_cast<int>(lines.size()); ++i)
@@ -44,8 +63,15 @@ std::vector<LinesPercept::Intersection> detectIntersections(const std::vector<Li
       const double tb = (r.x() * da.y() - r.y() * da.x()) / det;
       const Eigen::Vector2d p = a.from + ta * da;
       const double margin = std::max(params.endMargin, 3 * groundSigma(cm, p));
-      const Role ra = roleOf(a, ta, la, margin, params.maxExtension, cm, obstacles, params.borderPx);
-      const Role rb = roleOf(b, tb, lb, margin, params.maxExtension, cm, obstacles, params.borderPx);
+      Role ra = roleOf(a, ta, la, margin, params.maxExtension, cm, obstacles, params.borderPx);
+      Role rb = roleOf(b, tb, lb, margin, params.maxExtension, cm, obstacles, params.borderPx);
+      if (image && field && field->valid) {
+        // Away from the line's body: past its `to` end forwards, past its `from` end backwards.
+        if (ra == Role::End && continuesBeyond(p, ta > la / 2 ? da : Eigen::Vector2d(-da), cm, *image, *field, params))
+          ra = Role::Open;
+        if (rb == Role::End && continuesBeyond(p, tb > lb / 2 ? db : Eigen::Vector2d(-db), cm, *image, *field, params))
+          rb = Role::Open;
+      }
       if (ra == Role::None || rb == Role::None) continue;
       LinesPercept::Intersection x;
       if (ra == Role::Through && rb == Role::Through) {

@@ -95,7 +95,7 @@ VisionResult runVision(const CameraImage& image, const CameraMatrix& cm, const V
       std::fprintf(stderr, "REJECT (%.0f,%.0f)-(%.0f,%.0f) spots %d %s %.3f\n", x.imageFrom.x(), x.imageFrom.y(),
                    x.imageTo.x(), x.imageTo.y(), x.spots, x.reason, x.value);
   clock.stage("lines");
-  r.lines.intersections = vision::detectIntersections(r.lines.lines, cm, r.obstacles);
+  r.lines.intersections = vision::detectIntersections(r.lines.lines, cm, r.obstacles, {}, &image, &field);
   vision::PenaltyMarkParams penaltyParams;
   penaltyParams.size = geometry.penaltyCrossSize;
   r.lines.penaltyMark = vision::detectPenaltyMark(image, r.regions, field, r.lines.lines, r.obstacles, cm, penaltyParams,
