@@ -171,6 +171,7 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
       const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
       const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in);
       std::vector<VisibleBall> balls;
+      const std::vector<VisibleBall> allBalls = visibleFeatures(world, 0, camera, 1e9).balls;  // for the fits
       for (const VisibleBall& b : visibleFeatures(world, 0, camera, 6.0).balls)
         if (b.image.x() - b.radiusPx >= 0 && b.image.y() - b.radiusPx >= 0 && b.image.x() + b.radiusPx <= res.width &&
             b.image.y() + b.radiusPx <= res.height)
@@ -206,7 +207,7 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
         for (const vision::BallCandidate& c : cands) {
           if (!c.fitted || c.radius < params.learnedMinRadiusPx * 0.8) continue;
           double nearest = 1e9, nearestR = 0;
-          for (const VisibleBall& b : visibleFeatures(world, 0, camera, 1e9).balls)
+          for (const VisibleBall& b : allBalls)
             if ((c.centre - b.image).norm() < nearest) nearest = (c.centre - b.image).norm(), nearestR = b.radiusPx;
           if (nearest < 0.5 * nearestR) {
             for (int a = 0; a < options.augmentations; ++a) add(vision::ballPatch(img, c.centre, c.radius), true);

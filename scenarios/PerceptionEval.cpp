@@ -101,7 +101,10 @@ FrameTruth computeTruth(const World& world, CameraId camera) {
   }
   t.circleEligible = visible * 2 >= kSamples;
   // The penalty cross: its centre truly visible within 3 m and its four arm ends in the image.
-  if (const auto c = visibleFeatures(world, 0, camera, 3.0).penaltyCross) {
+  std::optional<Eigen::Vector2d> cross;
+  for (const auto& c : f.penaltyCrosses)
+    if (trulyVisible(world, 0, camera, Eigen::Vector3d(c.x(), c.y(), 0.001), 3.0)) cross = c;
+  if (const auto& c = cross) {
     const CameraResolution r = world.cameraResolution(camera);
     bool whole = true;
     for (const Eigen::Vector2d& d : {Eigen::Vector2d(0.05, 0), Eigen::Vector2d(-0.05, 0), Eigen::Vector2d(0, 0.05),

@@ -114,12 +114,8 @@ BallClassifier BallClassifier::load(const std::string& path) {
     throw Error(path, "not a ball classifier model (OpenCV: " + e.msg.substr(0, e.msg.find('\n')) + ")");
   }
   if (!c.mlp_ || !c.mlp_->isTrained()) throw Error(path, "not a ball classifier model (no trained network in it)");
-  const cv::Mat layers = c.mlp_->getLayerSizes();
-  if (layers.total() < 3 || layers.type() != CV_32S || layers.at<int>(0) != kFeatures ||
-      layers.at<int>(static_cast<int>(layers.total()) - 1) != 1)
-    throw Error(path, "layer_sizes: must take " + std::to_string(kFeatures) + " inputs and give 1 output");
-  // Weights that are not numbers would give silent garbage.
-  for (int l = 0; l < static_cast<int>(layers.total()) + 2; ++l) {
+  // Weights that are not numbers would give silent garbage (the shapes: checkModelShape).
+  for (int l = 0; l < static_cast<int>(c.mlp_->getLayerSizes().total()) + 2; ++l) {
     const cv::Mat w = c.mlp_->getWeights(l);
     if (!w.empty() && !cv::checkRange(w)) throw Error(path, "weights: not finite in layer " + std::to_string(l));
   }
