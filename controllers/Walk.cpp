@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "controllers/InertialOdometry.h"
 #include "controllers/Kinematics.h"
 #include "controllers/StandController.h"
 #include "robot/ForwardKinematics.h"
@@ -95,7 +96,7 @@ Vector3d groundContact(const SensorFrame& frame, bool left) {
 
 }  // namespace
 
-Walk::Walk(const Params& params) : params_(params) {
+Walk::Walk(const Params& params) : params_(params), inertial_(params.inertial) {
   const JointArray stand = standPosture();
   {
     const Isometry3d l = torsoToSole(stand, BodySide::Left), r = torsoToSole(stand, BodySide::Right);
@@ -585,17 +586,30 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
   const double turn = std::atan2(carried(1, 0), carried(0, 0));
   lastTilt_ = tilt;
   // The motion since the last cycle relative to the feet on the ground (a loaded foot does not
-  // move), each foot's share by the weight it carried: while the weight passes from one foot to
-  // the other both slip a little, the lightly loaded one more. The heading from the gyro.
+  // move), each foot weighted by the weight it carried: while the weight passes from one foot
+  // to the other both slip a little, the lightly loaded one more. The heading from the gyro.
   // The point of a sole that stays put is where it touches the ground: a foot landing on its
   // heel or rolling onto its toes turns about that edge, and the point below the ankle moves by
   // millimetres while it does. So each foot's motion is taken at its ground contact (from its
   // FSRs, this cycle), the same sole point in both cycles.
+  const Vector2d imuDelta =
+      imuVelocity_.update(tilt, frame.inertial.accelerometer, frame.inertial.gyroscope, turn, dt, Vector3d(dims::kImuX, dims::kImuY, dims::kImuZ));
+  // The inertial check only with an accelerometer that reads +g upwards on average (about 1 s):
+  // a sign convention other than the simulator's, or a broken sensor, leaves the kinematics alone.
+  const double up = (tilt * frame.inertial.accelerometer).z();
+  if (std::isfinite(up)) gravityReading_ += 0.02 * (up - gravityReading_);
+  const bool imuPlausible = std::abs(gravityReading_ - kGravity) < 2.0;
   if (haveRelative_ && !rotationOnly) {
     std::array<Pose2, 2> d;
     for (int side = 0; side < 2; ++side) {
       const Vector3d contact = groundContact(frame, side == 0);
-      d[side] = robotInSole(lastSoles_[side], contact).inverse() * robotInSole(soles[side], contact);
+      const Pose2 before = robotInSole(lastSoles_[side], contact), after = robotInSole(soles[side], contact);
+      // A loaded sole that twists (the gyro turned more than the leg did) turns about its
+      // contact, carrying the robot frame along an arc: with the robot frame 5-10 cm from the
+      // contact, a 1 deg twist moves it 1-2 mm sideways, which turning the robot frame about
+      // its own origin misses (the largest part of a randomised walk-to's error across its path).
+      const double twist = params_.twistAboutContact ? Pose2::wrap(turn - Pose2::wrap(after.theta - before.theta)) : 0.0;
+      d[side] = before.inverse() * Pose2(0, 0, twist) * after;
     }
     double w = std::pow(odometryLeftShare_, params_.odometryLoadExponent);
     double wr = std::pow(1 - odometryLeftShare_, params_.odometryLoadExponent);
@@ -603,14 +617,24 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
     // it is being dragged off the ground (measured: up to 8 mm a cycle the wrong way when the
     // other foot had landed late and was still bouncing on its heel).
     if (phase_ == Phase::Walking && t_ > params_.odometrySwingAfter) (supportLeft_ ? wr : w) = 0;
-    const double a = w + wr > 1e-9 ? w / (w + wr) : (supportLeft_ ? 1.0 : 0.0);
     const double k = params_.odometryScale;
-    Pose2 delta(k * (a * d[0].x + (1 - a) * d[1].x), k * (a * d[0].y + (1 - a) * d[1].y), a * d[0].theta + (1 - a) * d[1].theta);
-    if (params_.gyroOdometry) delta.theta = turn;
+    Pose2 delta;
+    if (!imuPlausible) inertial_.reset();
+    if (params_.inertialOdometry && imuPlausible && dt > 1e-6) {
+      // The feet's velocities checked against the IMU's prediction (InertialOdometry.h).
+      const Vector2d v = inertial_.update(dt, lastTurn_, imuDelta, Vector2d(d[0].x, d[0].y) / dt, w, Vector2d(d[1].x, d[1].y) / dt, wr);
+      delta = Pose2(k * v.x() * dt, k * v.y() * dt, 0);
+    } else {
+      const double a = w + wr > 1e-9 ? w / (w + wr) : (supportLeft_ ? 1.0 : 0.0);
+      delta = Pose2(k * (a * d[0].x + (1 - a) * d[1].x), k * (a * d[0].y + (1 - a) * d[1].y), a * d[0].theta + (1 - a) * d[1].theta);
+    }
+    if (params_.gyroOdometry || params_.inertialOdometry) delta.theta = turn;
     odometry_ = odometry_ * delta;
   } else {
     odometry_.theta = Pose2::wrap(odometry_.theta + turn);
+    inertial_.reset();
   }
+  lastTurn_ = turn;
   lastSoles_ = soles;
   // The feet's centre in the robot frame (each sole's pose is the inverse of the robot's in it).
   const Pose2 l = robotInSole(soles[0], Vector3d::Zero()).inverse(), r = robotInSole(soles[1], Vector3d::Zero()).inverse();

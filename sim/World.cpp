@@ -77,11 +77,12 @@ struct World::Impl {
     CameraCalibration miscalibration{};
     std::array<double, NumTouch> touch{};
     JointArray offset{};  // true angle = reading + offset
-    // The gyro's readings of the last physics steps: the IMU reports their mean over one cycle
-    // (its anti-aliasing filter; a raw sample every 12 ms would alias the stiff contacts' and
-    // servos' fast vibrations into a biased yaw rate).
-    std::vector<Eigen::Vector3d> gyroHistory;
-    std::size_t gyroNext = 0;
+    // The gyro's and accelerometer's readings of the last physics steps: the IMU reports their
+    // mean over one cycle (its anti-aliasing filter; a raw sample every 12 ms would alias the
+    // stiff contacts' and servos' fast vibrations into a biased yaw rate, and a foot's impact
+    // into a spike the cycle's velocity change does not have).
+    std::vector<Eigen::Vector3d> gyroHistory, accelHistory;
+    std::size_t imuNext = 0;
   };
   struct Ball {
     int body = -1, qpos = -1, dof = -1;
@@ -383,12 +384,14 @@ void World::step() {
   mj_step(I.m, I.d);
   I.checkWarnings();
   for (Impl::Robot& r : I.robots) {
-    const Eigen::Vector3d g(I.d->sensordata + r.gyroAdr);
+    const Eigen::Vector3d g(I.d->sensordata + r.gyroAdr), a(I.d->sensordata + r.accelAdr);
     if (r.gyroHistory.size() < static_cast<std::size_t>(I.stepsPerCycle)) {
       r.gyroHistory.push_back(g);
+      r.accelHistory.push_back(a);
     } else {
-      r.gyroHistory[r.gyroNext] = g;
-      r.gyroNext = (r.gyroNext + 1) % r.gyroHistory.size();
+      r.gyroHistory[r.imuNext] = g;
+      r.accelHistory[r.imuNext] = a;
+      r.imuNext = (r.imuNext + 1) % r.gyroHistory.size();
     }
   }
 }
@@ -431,7 +434,12 @@ SensorFrame World::sensors(int robot) const {
     for (const Eigen::Vector3d& g : r.gyroHistory) gyro += g;
     gyro /= static_cast<double>(r.gyroHistory.size());
   }
-  const Eigen::Vector3d accel(d->sensordata + r.accelAdr);
+  Eigen::Vector3d accel(d->sensordata + r.accelAdr);
+  if (!r.accelHistory.empty()) {
+    accel.setZero();
+    for (const Eigen::Vector3d& a : r.accelHistory) accel += a;
+    accel /= static_cast<double>(r.accelHistory.size());
+  }
   f.inertial.gyroscope = siteInTorso * gyro + Eigen::Vector3d(I.gauss(I.noise.gyro), I.gauss(I.noise.gyro), I.gauss(I.noise.gyro));
   f.inertial.accelerometer =
       siteInTorso * accel + Eigen::Vector3d(I.gauss(I.noise.accel), I.gauss(I.noise.accel), I.gauss(I.noise.accel));
@@ -500,7 +508,8 @@ void World::placeRobot(int robot, const Eigen::Vector3d& pose, const JointArray&
   r.request.position = angles;
   r.request.stiffness.fill(1.0);
   r.gyroHistory.clear();
-  r.gyroNext = 0;
+  r.accelHistory.clear();
+  r.imuNext = 0;
   r.torque.fill(0);
   mj_forward(m, d);
 }

@@ -7,3 +7,6 @@ nao_add_test(fall_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/fall_test.cpp LIBS nao_
 # Get-up: issue 4's acceptance (upright within 15 s from front and back, nominal and randomised
 # robots), 4 trials per side and robot kind (NAO_TEST_QUICK: 2); about 40 s in Release.
 nao_add_test(getup_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/getup_test.cpp LIBS nao_scenarios)
+# Odometry: the inertial check of the feet (synthetic truth), a twisting sole, the simulated
+# IMU against the truth, randomised walk-to odometry against the truth.
+nao_add_test(odometry_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/odometry_test.cpp LIBS nao_scenarios)
