@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
+
+#include <Eigen/Geometry>
 
 namespace nao {
 
@@ -33,7 +34,7 @@ Eigen::Vector2d ImuVelocityChange::update(const Eigen::Matrix3d& tilt, const Eig
   // The next cycle starts in this one's end frame.
   lastAcceleration_ = specific.head<2>();
   lastLever_ = lever.head<2>();
-  have_ = dt > 0 && specific.allFinite() && lever.allFinite();
+  have_ = specific.allFinite() && lever.allFinite();
   return change;
 }
 
@@ -43,7 +44,6 @@ Eigen::Vector2d InertialOdometry::update(double dt, double turn, const Eigen::Ve
   leftWeight = std::clamp(std::isfinite(leftWeight) ? leftWeight : 0.0, 0.0, 1.0);
   rightWeight = std::clamp(std::isfinite(rightWeight) ? rightWeight : 0.0, 0.0, 1.0);
   const bool leftOk = leftWeight > 0 && leftVelocity.allFinite(), rightOk = rightWeight > 0 && rightVelocity.allFinite();
-  dt_ = dt;
   const double r2 = params_.measurement * params_.measurement;
   const auto kinematic = [&] {
     const double wl = leftOk ? leftWeight : 0.0, wr = rightOk ? rightWeight : 0.0;
@@ -52,19 +52,20 @@ Eigen::Vector2d InertialOdometry::update(double dt, double turn, const Eigen::Ve
                                          (wl + wr))
                        : Eigen::Vector2d::Zero();
   };
-  if (!initialised_ || !(dt > 0) || !imuDelta.allFinite()) {
-    // Start from the kinematics; the bias is unknown within initialBias.
+  if (!initialised_ || !(dt > 0) || !std::isfinite(turn) || !imuDelta.allFinite()) {
+    // Start from the kinematics; the bias is unknown within initialBias (kept from before
+    // when there is one: a gap in the readings does not change the sensor).
     velocity_ = kinematic();
-    if (!initialised_) bias_.setZero();
+    if (!initialised_ || !bias_.allFinite()) bias_.setZero();
     covariance_ << r2, 0, 0, params_.initialBias * params_.initialBias;
     initialised_ = true;
     rejectedInARow_ = 0;
     return velocity_;
   }
-  // The state into this cycle's frame (the vectors turn with the robot), then the prediction:
-  // v += imuDelta - b dt.
+  // The velocity into this cycle's frame (it turns with the robot), then the prediction:
+  // v += imuDelta - b dt. The bias is the body's (a tilt that is off, the sensor's offset): it
+  // stays in the robot frame.
   velocity_ = rotated(velocity_, -turn);
-  bias_ = rotated(bias_, -turn);
   velocity_ += imuDelta - bias_ * dt;
   Eigen::Matrix2d f;
   f << 1, -dt, 0, 1;
@@ -73,10 +74,13 @@ Eigen::Vector2d InertialOdometry::update(double dt, double turn, const Eigen::Ve
   covariance_(1, 1) += params_.processBias * params_.processBias;
 
   int accepted = 0, offered = 0;
-  for (const auto& [z, w, ok] : {std::tuple{leftVelocity, leftWeight, leftOk}, std::tuple{rightVelocity, rightWeight, rightOk}}) {
-    if (!ok) continue;
+  if (leftOk) {
     ++offered;
-    if (measure(z, w)) ++accepted;
+    accepted += measure(leftVelocity, leftWeight) ? 1 : 0;
+  }
+  if (rightOk) {
+    ++offered;
+    accepted += measure(rightVelocity, rightWeight) ? 1 : 0;
   }
   if (offered > 0 && accepted == 0 && ++rejectedInARow_ >= kMaxRejectedInARow) {
     velocity_ = kinematic();
@@ -93,8 +97,10 @@ bool InertialOdometry::measure(const Eigen::Vector2d& z, double weight) {
   const double r = params_.measurement * params_.measurement / weight;
   const double s = covariance_(0, 0) + r;
   const Eigen::Vector2d innovation = z - velocity_;
-  // The innovation's two axes are independent with variance s each.
-  if (innovation.squaredNorm() > params_.gate * params_.gate * s) {
+  // The innovation's two axes are independent with variance s each: |innovation|^2 / s is
+  // chi-square with 2 degrees of freedom (a gate of 3 rejects 1.1 % of good measurements).
+  // Written so that a NaN is rejected too.
+  if (!(innovation.squaredNorm() <= params_.gate * params_.gate * s)) {
     ++rejected_;
     return false;
   }

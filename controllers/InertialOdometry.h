@@ -10,19 +10,19 @@
 // (a bouncing foot reads 0-15 kg from cycle to cycle); the accelerometer can. Integrated over
 // one cycle, its specific force less gravity (the IMU's tilt) and less the change of the IMU's
 // lever-arm velocity (it sits 11 cm above the robot frame's origin, the torso rocks at
-// 0.5 rad/s) predicts the next cycle's velocity to 0.04 mm (standard deviation, 1100 cycles of
-// walking), where a loaded foot's kinematics scatter by 0.2 mm (median) to 4 mm (99 %).
+// 0.5 rad/s) predicts the next cycle's displacement to 0.025 mm (median; 99 % within 0.15 mm,
+// tests/odometry_test.cpp), where a loaded foot's kinematics scatter by 0.2 mm (median) to
+// 4 mm (99 %) a cycle.
 //
 // So: state = (velocity, accelerometer bias), per horizontal axis, in the robot frame. Predict
 // with the accelerometer; each foot's kinematic velocity is a measurement whose variance grows
-// as its load share shrinks; a measurement more than gate standard deviations from the
-// prediction is a foot that moved (rejected). The bias state takes up a slowly wrong tilt (a
-// real IMU's angle is off by a degree or so: 0.17 m/s^2), which the kinematics observe over
-// time. The mean velocity over a long walk is still the kinematics' (the filter's prediction
+// as its load share shrinks; a measurement more than `gate` standard deviations from the
+// prediction (in 2-D) is a foot that moved (rejected). The bias state, fixed to the body, takes
+// up a slowly wrong tilt (a real IMU's angle is off by a degree or so: 0.17 m/s^2), which the
+// kinematics observe over time. The mean velocity over a long walk is still the kinematics' (the filter's prediction
 // has no information of its own about a steady creep), but a foot that slides for a few cycles
 // no longer moves the odometry.
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace nao {
 
@@ -82,7 +82,6 @@ class InertialOdometry {
   bool initialised_ = false;
   Eigen::Vector2d velocity_ = Eigen::Vector2d::Zero(), bias_ = Eigen::Vector2d::Zero();
   Eigen::Matrix2d covariance_ = Eigen::Matrix2d::Zero();  // (velocity, bias), the same for x and y
-  double dt_ = 0.012;
   int rejected_ = 0, rejectedInARow_ = 0;
 };
 

@@ -600,6 +600,7 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
   if (std::isfinite(up)) gravityReading_ += 0.02 * (up - gravityReading_);
   const bool imuPlausible = std::abs(gravityReading_ - kGravity) < 2.0;
   if (haveRelative_ && !rotationOnly) {
+    const bool inertial = params_.inertialOdometry && imuPlausible && dt > 1e-6;
     std::array<Pose2, 2> d;
     for (int side = 0; side < 2; ++side) {
       const Vector3d contact = groundContact(frame, side == 0);
@@ -608,7 +609,10 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
       // contact, carrying the robot frame along an arc: with the robot frame 5-10 cm from the
       // contact, a 1 deg twist moves it 1-2 mm sideways, which turning the robot frame about
       // its own origin misses (the largest part of a randomised walk-to's error across its path).
-      const double twist = params_.twistAboutContact ? Pose2::wrap(turn - Pose2::wrap(after.theta - before.theta)) : 0.0;
+      // Only with the inertial check: a foot in the air "twists" too, and without the check
+      // that wrong arc was followed (a 9 cm walk-to trial).
+      const double twist =
+          params_.twistAboutContact && inertial ? Pose2::wrap(turn - Pose2::wrap(after.theta - before.theta)) : 0.0;
       d[side] = before.inverse() * Pose2(0, 0, twist) * after;
     }
     double w = std::pow(odometryLeftShare_, params_.odometryLoadExponent);
@@ -617,10 +621,10 @@ void Walk::updateOdometry(const SensorFrame& frame, bool rotationOnly) {
     // it is being dragged off the ground (measured: up to 8 mm a cycle the wrong way when the
     // other foot had landed late and was still bouncing on its heel).
     if (phase_ == Phase::Walking && t_ > params_.odometrySwingAfter) (supportLeft_ ? wr : w) = 0;
-    const double k = params_.odometryScale;
+    const double k = inertial ? params_.odometryScale : params_.kinematicOdometryScale;
     Pose2 delta;
     if (!imuPlausible) inertial_.reset();
-    if (params_.inertialOdometry && imuPlausible && dt > 1e-6) {
+    if (inertial) {
       // The feet's velocities checked against the IMU's prediction (InertialOdometry.h).
       const Vector2d v = inertial_.update(dt, lastTurn_, imuDelta, Vector2d(d[0].x, d[0].y) / dt, w, Vector2d(d[1].x, d[1].y) / dt, wr);
       delta = Pose2(k * v.x() * dt, k * v.y() * dt, 0);
