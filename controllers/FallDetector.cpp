@@ -5,17 +5,6 @@
 
 namespace nao {
 
-const char* fallDirectionName(FallDirection d) {
-  switch (d) {
-    case FallDirection::Front: return "front";
-    case FallDirection::Back: return "back";
-    case FallDirection::Left: return "left";
-    case FallDirection::Right: return "right";
-    case FallDirection::None: break;
-  }
-  return "none";
-}
-
 // The torso orientation is Ry(pitch) Rx(roll): pitch > 0 leans forward, roll > 0 lifts the
 // left side, i.e. leans to the right. Which way the robot lies follows from which torso axis
 // points down most: x (front, back) or y (sides). Beyond 90 deg of tilt the two angles alone

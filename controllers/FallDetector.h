@@ -3,22 +3,14 @@
 // Falling: the torso tilts beyond fallingAngle and keeps tipping (gyro) -- time to go soft.
 // Fallen: the tilt exceeds fallenAngle (48 deg), or the feet carry no weight while tilted
 // beyond fallingAngle. Stays fallen until the torso has been upright for uprightTime.
+#include "representations/perception/FallState.h"
 #include "robot/SensorData.h"
 
 namespace nao {
 
-enum class FallDirection { None, Front, Back, Left, Right };
-const char* fallDirectionName(FallDirection d);
 // Which way a torso at this IMU roll and pitch (Ry(pitch) Rx(roll), rad) leans or lies: the
 // torso axis (x: front/back, y: sides) that points down most.
 FallDirection lyingDirection(double roll, double pitch);
-
-struct FallState {
-  bool falling = false;  // tipping over, not yet down
-  bool fallen = false;   // down (latched until upright again)
-  FallDirection direction = FallDirection::None;
-  double fallTime = -1;  // frame time at which `fallen` became true; -1 when not fallen
-};
 
 class FallDetector {
  public:

@@ -16,25 +16,12 @@
 
 #include <Eigen/Geometry>
 
-#include "controllers/MotionEngine.h"
+#include "representations/behavior/HeadMotionRequest.h"
+#include "representations/motion/HeadJointRequest.h"
 #include "robot/CameraImage.h"
 #include "robot/SensorData.h"
 
 namespace nao {
-
-struct HeadMotionRequest {
-  enum class Mode { Angles, LookAtRobotPoint, LookAtFieldPoint, Sweep, Calibration };
-  Mode mode = Mode::Angles;
-  double yaw = 0, pitch = 0;                      // Angles (rad)
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // LookAt*: m, robot or field frame
-  Eigen::Vector3d robotPose = Eigen::Vector3d::Zero();  // LookAtFieldPoint: the robot's field pose (x, y, theta)
-  CameraId camera = CameraId::Top;                // LookAt*: the camera whose centre aims at the point
-  double sweepAmplitude = 1.0;                    // Sweep: yaw goes +-amplitude (rad) ...
-  double sweepPitch = 0.2;                        // ... at this pitch
-  double sweepSpeed = 1.0;                        // rad/s along the sweep
-  std::size_t calibrationIndex = 0;               // Calibration: the view in calibrationPattern()
-  double maxSpeed = 0;                            // rad/s; 0 = the default limit
-};
 
 // One view of the calibration pattern.
 struct CalibrationView {

@@ -26,7 +26,7 @@
 // stand position, and a closer ball would be pushed away before the kick.
 #include <Eigen/Core>
 
-#include "controllers/MotionRequest.h"
+#include "representations/behavior/MotionRequest.h"
 #include "robot/JointRequest.h"
 #include "robot/SensorData.h"
 

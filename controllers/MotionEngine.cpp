@@ -10,19 +10,6 @@
 
 namespace nao {
 
-const char* motionTypeName(MotionType type) {
-  switch (type) {
-    case MotionType::Stand: return "stand";
-    case MotionType::Walk: return "walk";
-    case MotionType::WalkTo: return "walk_to";
-    case MotionType::Kick: return "kick";
-    case MotionType::GetUp: return "get_up";
-    case MotionType::SitDown: return "sit_down";
-    case MotionType::PlayDead: return "play_dead";
-  }
-  return "?";
-}
-
 namespace {
 
 constexpr double kCycle = 0.012;

@@ -12,18 +12,15 @@
 #include "controllers/FallDetector.h"
 #include "controllers/GetUp.h"
 #include "controllers/Kick.h"
-#include "controllers/MotionRequest.h"
 #include "controllers/Walk.h"
+#include "representations/behavior/MotionRequest.h"
+#include "representations/motion/HeadJointRequest.h"
+#include "representations/motion/MotionInfo.h"
+#include "representations/motion/Odometry.h"
 #include "robot/JointRequest.h"
 #include "robot/SensorData.h"
 
 namespace nao {
-
-// The head joints HeadControl asks for (the engine applies them when the motion allows).
-struct HeadJointRequest {
-  double yaw = 0, pitch = 0;  // rad
-  double stiffness = 0.8;
-};
 
 class MotionEngine {
  public:

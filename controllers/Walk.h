@@ -67,7 +67,7 @@
 #include <Eigen/Geometry>
 
 #include "controllers/InertialOdometry.h"
-#include "controllers/MotionRequest.h"
+#include "representations/behavior/MotionRequest.h"
 #include "robot/JointRequest.h"
 #include "robot/SensorData.h"
 

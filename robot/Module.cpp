@@ -1,46 +1,64 @@
 #include "robot/Module.h"
 
 #include <map>
-#include <set>
-#include <stdexcept>
+
+#include "robot/Error.h"
 
 namespace nao {
 
 void Pipeline::sort() {
+  const std::string where = "module pipeline";
   std::map<std::type_index, std::size_t> provider;
+  std::map<std::type_index, std::string> inputs;
+  for (const auto& t : inputs_) inputs.emplace(t.type, t.name);
   for (std::size_t i = 0; i < modules_.size(); ++i)
     for (const auto& t : modules_[i]->provided()) {
-      if (provider.count(t))
-        throw std::logic_error("pipeline: " + std::string(t.name()) + " provided by both " +
-                               modules_[provider[t]]->name() + " and " + modules_[i]->name());
-      provider[t] = i;
+      if (inputs.count(t.type))
+        throw Error(where, t.name + " is an input of the pipeline and provided by " + modules_[i]->name() + " too");
+      if (auto it = provider.find(t.type); it != provider.end())
+        throw Error(where, t.name + " is provided by both " + modules_[it->second]->name() + " and " + modules_[i]->name());
+      provider[t.type] = i;
     }
-  const std::set<std::type_index> inputs(inputs_.begin(), inputs_.end());
-  std::vector<std::unique_ptr<Module>> ordered;
-  std::vector<int> state(modules_.size(), 0);  // 0 new, 1 visiting, 2 done
+
+  // Depth-first, in the order the modules were added, so the order is reproducible.
+  std::vector<std::size_t> ordered;
+  std::vector<int> state(modules_.size(), 0);  // 0 new, 1 on the path, 2 done
+  std::vector<std::pair<std::size_t, std::string>> path;  // module, the representation it waits for
   auto visit = [&](auto&& self, std::size_t i) -> void {
     if (state[i] == 2) return;
-    if (state[i] == 1) throw std::logic_error("pipeline: dependency cycle through " + modules_[i]->name());
+    if (state[i] == 1) {
+      std::string cycle;
+      std::size_t k = 0;
+      while (path[k].first != i) ++k;
+      for (; k < path.size(); ++k)
+        cycle += modules_[path[k].first]->name() + " requires " + path[k].second + " from ";
+      throw Error(where, "dependency cycle: " + cycle + modules_[i]->name());
+    }
     state[i] = 1;
     for (const auto& t : modules_[i]->required()) {
-      if (inputs.count(t)) continue;
-      auto it = provider.find(t);
+      if (inputs.count(t.type)) continue;
+      auto it = provider.find(t.type);
       if (it == provider.end())
-        throw std::logic_error("pipeline: " + modules_[i]->name() + " requires " + t.name() + ", which nothing provides");
+        throw Error(where, modules_[i]->name() + " requires " + t.name + ", which no module provides and no input is");
+      path.emplace_back(i, t.name);
       self(self, it->second);
+      path.pop_back();
     }
     state[i] = 2;
-    ordered.push_back(std::move(modules_[i]));
+    ordered.push_back(i);
   };
   for (std::size_t i = 0; i < modules_.size(); ++i)
     if (state[i] == 0) visit(visit, i);
-  modules_ = std::move(ordered);
+  // Only a complete order replaces the modules: a failed sort leaves them as they were.
+  std::vector<std::unique_ptr<ModuleBase>> sorted;
+  for (std::size_t i : ordered) sorted.push_back(std::move(modules_[i]));
+  modules_ = std::move(sorted);
   sorted_ = true;
 }
 
 void Pipeline::update(Blackboard& blackboard) {
   if (!sorted_) sort();
-  for (auto& m : modules_) m->update(blackboard);
+  for (auto& m : modules_) m->execute(blackboard);
 }
 
 std::vector<std::string> Pipeline::order() const {

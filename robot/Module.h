@@ -1,51 +1,145 @@
 #pragma once
-// A module of the robot program: it declares the representations it requires and provides,
-// and computes its provisions once per cycle in update(). The Pipeline orders modules so that
-// every requirement is provided before it is read.
+// Modules of the robot program and the pipeline that orders them (docs/architecture.md).
+//
+// A module declares what it reads and what it writes in its type:
+//
+//   class FallDetector : public Module<FallDetector, Requires<SensorFrame>, Provides<FallState>> {
+//     void update() override { out<FallState>() = detector_.update(in<SensorFrame>()); }
+//   };
+//
+// in<T>() returns a const reference and compiles only for a T in Requires<>; out<T>() returns
+// a mutable reference and compiles only for a T in Provides<>. The board itself is out of
+// reach, so a module cannot read or write anything it did not declare. The Pipeline orders the
+// modules from these declarations.
 #include <memory>
 #include <string>
+#include <tuple>
+#include <type_traits>
 #include <typeindex>
 #include <vector>
 
 #include "robot/Blackboard.h"
+#include "robot/TypeName.h"
 
 namespace nao {
 
-class Module {
- public:
-  virtual ~Module() = default;
-  virtual std::string name() const = 0;
-  virtual void update(Blackboard& blackboard) = 0;
+template <class... T>
+struct Requires {};
+template <class... T>
+struct Provides {};
 
-  const std::vector<std::type_index>& required() const { return requires_; }
-  const std::vector<std::type_index>& provided() const { return provides_; }
+// Motion runs every LoLA cycle (12 ms); cognition once per camera image.
+enum class Cadence { Motion, Cognition };
+inline const char* cadenceName(Cadence c) { return c == Cadence::Motion ? "motion" : "cognition"; }
 
- protected:
-  template <class... T>
-  void require() { (requires_.emplace_back(typeid(T)), ...); }
-  template <class... T>
-  void provide() { (provides_.emplace_back(typeid(T)), ...); }
-
- private:
-  std::vector<std::type_index> requires_, provides_;
+// A representation's type with its readable name (for errors, tables and config/modules.json).
+struct RepresentationType {
+  std::type_index type;
+  std::string name;
+  template <class T>
+  static RepresentationType of() {
+    return {std::type_index(typeid(T)), typeName<T>()};
+  }
+  bool operator==(const RepresentationType& o) const { return type == o.type; }
 };
 
-// Runs modules in dependency order. Representations written by the backend (sensor data,
-// images) are declared as inputs.
+// What the pipeline sees of a module.
+class ModuleBase {
+ public:
+  virtual ~ModuleBase() = default;
+  virtual const std::string& name() const = 0;
+  virtual Cadence cadence() const = 0;
+  virtual std::vector<RepresentationType> required() const = 0;
+  virtual std::vector<RepresentationType> provided() const = 0;
+  // Looks up the declared representations on this board (creating the provided ones) and
+  // runs update(). A required one missing from the board throws, naming it.
+  virtual void execute(Blackboard& board) = 0;
+};
+
+namespace detail {
+template <class T, class... L>
+inline constexpr bool contains = (std::is_same_v<T, L> || ...);
+template <class... L>
+struct distinct : std::true_type {};
+template <class H, class... L>
+struct distinct<H, L...> : std::bool_constant<!contains<H, L...> && distinct<L...>::value> {};
+}  // namespace detail
+
+template <class Derived, class Req, class Prov, Cadence C = Cadence::Motion>
+class Module;
+
+template <class Derived, class... R, class... P, Cadence C>
+class Module<Derived, Requires<R...>, Provides<P...>, C> : public ModuleBase {
+  static_assert(sizeof...(P) > 0, "a module provides at least one representation");
+  static_assert(detail::distinct<R...>::value, "a representation is listed twice in Requires<>");
+  static_assert(detail::distinct<P...>::value, "a representation is listed twice in Provides<>");
+  static_assert(!(detail::contains<R, P...> || ...),
+                "a module cannot require what it provides (keep the state in the module instead)");
+
+ public:
+  static constexpr Cadence kCadence = C;
+  static std::vector<RepresentationType> declaredRequires() { return {RepresentationType::of<R>()...}; }
+  static std::vector<RepresentationType> declaredProvides() { return {RepresentationType::of<P>()...}; }
+
+  const std::string& name() const override { return shortTypeName<Derived>(); }
+  Cadence cadence() const override { return C; }
+  std::vector<RepresentationType> required() const override { return declaredRequires(); }
+  std::vector<RepresentationType> provided() const override { return declaredProvides(); }
+  void execute(Blackboard& board) final {
+    in_ = std::tuple<const R*...>(&board.read<R>()...);
+    out_ = std::tuple<P*...>(&board.write<P>()...);
+    update();
+  }
+
+ protected:
+  // Computes the provisions from the requirements, once per run of the module's cadence.
+  virtual void update() = 0;
+
+  template <class T>
+  const T& in() const {
+    static_assert(detail::contains<T, R...>, "in<T>(): T is not in this module's Requires<>");
+    return *std::get<const T*>(in_);
+  }
+  template <class T>
+  T& out() {
+    static_assert(detail::contains<T, P...>, "out<T>(): T is not in this module's Provides<>");
+    return *std::get<T*>(out_);
+  }
+
+ private:
+  std::tuple<const R*...> in_{};
+  std::tuple<P*...> out_{};
+};
+
+// Runs modules in dependency order. Representations written from outside the modules (the
+// backend's sensor data and images, the configuration, requests a scenario sets) are declared
+// as inputs.
 class Pipeline {
  public:
-  void add(std::unique_ptr<Module> module) { modules_.push_back(std::move(module)); sorted_ = false; }
+  void add(std::unique_ptr<ModuleBase> module) {
+    modules_.push_back(std::move(module));
+    sorted_ = false;
+  }
   template <class... T>
-  void inputs() { (inputs_.emplace_back(typeid(T)), ...); sorted_ = false; }
-  // Orders the modules; throws std::logic_error naming a module whose requirement nobody
-  // provides, a representation with two providers, or a cycle.
+  void inputs() {
+    (input(RepresentationType::of<T>()), ...);
+  }
+  void input(RepresentationType type) {
+    inputs_.push_back(std::move(type));
+    sorted_ = false;
+  }
+  // Orders the modules so that every requirement is provided before it is read. Throws
+  // nao::Error (where: "module pipeline") naming the modules and the representation for a
+  // representation with two providers (or an input that a module provides too), a requirement
+  // that nothing provides, and a dependency cycle (with its path).
   void sort();
   void update(Blackboard& blackboard);
   std::vector<std::string> order() const;
+  const std::vector<std::unique_ptr<ModuleBase>>& modules() const { return modules_; }
 
  private:
-  std::vector<std::unique_ptr<Module>> modules_;
-  std::vector<std::type_index> inputs_;
+  std::vector<std::unique_ptr<ModuleBase>> modules_;
+  std::vector<RepresentationType> inputs_;
   bool sorted_ = false;
 };
 

@@ -64,6 +64,7 @@ SimRunResult runSim(const SimRunOptions& options) {
   // As on a NAO at start: the calibration stored for this robot's head (none: no offsets).
   RobotProgramConfig config;
   config.calibration = calibration::CalibrationStore().offsetsFor(backend.robotInfo().headId);
+  config.headId = backend.robotInfo().headId;  // config/robots/<head id>/ overlays, if any
   RobotProgram program(config);
   result.moduleOrder = program.moduleOrder();
   const auto wallStart = Clock::now();

@@ -14,9 +14,11 @@
 #include "controllers/FallDetector.h"
 #include "controllers/HeadControl.h"
 #include "controllers/MotionEngine.h"
-#include "controllers/MotionRequest.h"
 #include "controllers/RobotProgram.h"
 #include "perception/FieldDimensions.h"
+#include "representations/behavior/MotionRequest.h"
+#include "representations/motion/MotionInfo.h"
+#include "representations/motion/Odometry.h"
 
 namespace nao::sim {
 

@@ -63,6 +63,10 @@ cp "$root/models/vision/ball_classifier.yml" "$stage/models/vision/"
 cp "$root/robot/deploy/nao-soccer-start" "$stage/bin/"
 cp "$root/robot/deploy/nao-soccer.service" "$stage/"
 cp "$field" "$stage/config/field_dimensions.json"
+# The module pipeline's providers and the modules' parameters (with per-robot overlays).
+cp "$root/config/modules.json" "$stage/config/"
+cp -r "$root/config/parameters" "$stage/config/"
+[ ! -d "$root/config/robots" ] || cp -r "$root/config/robots" "$stage/config/"
 [ -z "$camera_settings" ] || cp "$camera_settings" "$stage/config/camera_settings.json"
 printf 'TEAM=%s\nPLAYER=%s\nEXTRA_ARGS="%s"\n' "$team" "$player" "$extra" >"$stage/nao-soccer.env"
 if [ "$bundle" = 1 ] && [ -z "$toolchain" ]; then
