@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (LoLA and GameController parsers, the module parameter loader) with
-# Debian's clang in build-fuzz (or $NAO_FUZZ_BUILD_DIR) and runs them one after the other, one job each.
+# Builds the libFuzzer targets (LoLA and GameController parsers, the module parameter loader, the
+# command line) with Debian's clang in build-fuzz (or $NAO_FUZZ_BUILD_DIR) and runs them one
+# after the other, one job each.
 #   bash .ci/fuzz.sh              1,000,000 executions each (the figure the README quotes)
 #   bash .ci/fuzz.sh -runs N      N executions each
 #   bash .ci/fuzz.sh -seconds S   S seconds each (CI)
@@ -17,13 +18,40 @@ case "${1:-}" in
 esac
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNAO_FUZZ=ON \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
-cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz fuzz_seeds -j2
+cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz argv_fuzz fuzz_seeds -j2
 "$b"/bin/fuzz_seeds "$b"/seeds
 # The parameter loader starts from the committed parameter files.
 mkdir -p "$b"/seeds/params
 cp config/parameters/*.json "$b"/seeds/params/
+# Command lines, their words separated by NUL bytes: a valid one of every command and a few bad.
+mkdir -p "$b"/seeds/argv
+i=0
+while IFS= read -r line; do
+  printf '%s' "$line" | tr ' ' '\0' >"$b"/seeds/argv/seed$i
+  i=$((i + 1))
+done <<'SEEDS'
+render --camera bottom --pose -3.2,-3,90 --head 35,12 --out x.png --json -
+run --backend sim --seconds 2 --pose 0,0,0 --cameras off --images d
+run --backend nao --team 5 --player 2 --gc-address 127.0.0.1 --cameras none
+bench sim --seconds 5 --repeats 1
+bench perception --frames 10 --camera bottom --lighting sweep
+bench calibration --miscalibration 1,2,3,-1,-2,-3
+perceive x.png --size 640x480 --head 10,5 --scale 2
+eval perception --trials 3 --max-offset 2 --images d --images-every 2
+eval calibration --trials 2 --solver ceres
+eval walk --trials 2 --seconds 10 --randomize
+eval walk-to --trials 1
+eval getup --seconds 5
+walk --vx 300 --vtheta -20 --seconds 3
+walk --to 1,0.5,90 --randomize
+kick --trials 2
+train ball --scenes 10 --hidden 8
+calibrate --solver ceres --compare --start left --placement-error 0.1,0,5 --save --store d
+render --seed -1 --pose nan,1,2 --out
+eval bogus --trials 99999999999
+SEEDS
 mkdir -p "$b"/findings
-for target in lola gamecontroller params; do
+for target in lola gamecontroller params argv; do
   corpus="$b"/corpus/$target
   mkdir -p "$corpus"
   log="$b"/$target.log

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <random>
 
+#include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
 #include "perception/calibration/CalibrationStore.h"
@@ -39,10 +40,10 @@ std::array<double, 6> difference(const CameraCalibration& a, const CameraCalibra
 }
 
 // The calibration looks at the goal box: a field file without one is bad input for it.
-FieldDimensions calibrationFieldFrom(const Args& args) {
-  FieldDimensions f = fieldFrom(args);
+FieldDimensions calibrationFieldFrom(const CommonOptions& common) {
+  FieldDimensions f = fieldFrom(common);
   if (!f.hasGoalBox)
-    throw Error(args.str("field", dataPath("config/field_dimensions.json")),
+    throw Error(common.field.empty() ? dataPath("config/field_dimensions.json") : common.field,
                 "field.goalBoxAreaLength/goalBoxAreaWidth: missing, and the calibration looks at the goal box");
   return f;
 }
@@ -92,43 +93,19 @@ nlohmann::json runJson(const sim::CalibrationRunResult& r) {
 
 }  // namespace
 
-int calibrateCommand(const Argv& argv) {
-  auto options = commonOptions();
-  for (auto& o : simOptions()) options.push_back(o);
-  options.insert(options.end(),
-                 {{"solver", "gauss-newton|ceres", "least-squares solver (default gauss-newton)"},
-                  {"compare", "", "also solve the same samples with the other solver"},
-                  {"lines", "lsd|vision", "image line segments from OpenCV's LSD (default) or the vision pipeline first"},
-                  {"start", "left|right", "the side line the robot starts on (default right)"},
-                  {"placement-error", "DX,DY,DTHETA", "where the robot really stands vs the plan: m, m, deg (default 0,0,0)"},
-                  {"images", "DIR", "write every view annotated and the before/after pictures (paper Fig. 2)"},
-                  {"save", "", "store an accepted result for this robot's head id (refused above the residual threshold)"},
-                  {"store", "DIR", "calibration folder for --save (default config/calibration)"}});
-  Args args("calibrate", argv, options);
-  if (args.helpRequested()) {
-    std::cout << args.usage();
-    return 0;
-  }
+int calibrateCommand(const CalibrateOptions& options) {
   sim::CalibrationRunOptions o;
-  o.field = calibrationFieldFrom(args);
-  o.robotModel = robotModelFrom(args);
-  o.lighting = lightingFrom(args);
-  o.miscalibration = miscalibrationFrom(args, args.seed());
-  o.seed = args.seed();
-  o.calibrator.solver = cal::parseSolver(args.str("solver", "gauss-newton"));
-  o.compareSolvers = args.has("compare");
-  const std::string lines = args.str("lines", "lsd");
-  if (lines != "lsd" && lines != "vision") throw Error("--lines", "must be lsd or vision, not '" + lines + "'");
-  o.lineSource = lines == "vision" ? cal::LineSource::Vision : cal::LineSource::Lsd;
-  const std::string start = args.str("start", "right");
-  if (start != "left" && start != "right") throw Error("--start", "must be left or right, not '" + start + "'");
-  o.side = start == "left" ? 1 : -1;
-  if (auto p = args.optionalList("placement-error", 3)) {
-    if (std::hypot((*p)[0], (*p)[1]) > 0.5 || std::abs((*p)[2]) > 30)
-      throw Error("--placement-error", "must stay within 0.5 m and 30 deg");
-    o.placementError = Eigen::Vector3d((*p)[0], (*p)[1], (*p)[2] * kDeg);
-  }
-  o.imagesDir = args.str("images", "");
+  o.field = calibrationFieldFrom(options.common);
+  o.robotModel = options.sim.model;
+  o.lighting = lightingFrom(options.sim.lighting);
+  o.miscalibration = miscalibrationFrom(options.sim, options.common.seed);
+  o.seed = options.common.seed;
+  o.calibrator.solver = cal::parseSolver(options.solver);
+  o.compareSolvers = options.compare;
+  o.lineSource = options.lines == "vision" ? cal::LineSource::Vision : cal::LineSource::Lsd;
+  o.side = options.start == "left" ? 1 : -1;
+  if (const auto& p = options.placementError; !p.empty()) o.placementError = Eigen::Vector3d(p[0], p[1], p[2] * kDeg);
+  o.imagesDir = options.images;
 
   const sim::CalibrationRunResult r = sim::runCalibration(o);
   const auto err = difference(r.estimate, r.truth);
@@ -148,8 +125,8 @@ int calibrateCommand(const Argv& argv) {
   j["lighting"] = lightingJson(o.lighting);
   j["seed"] = o.seed;
   j["files"] = r.imagesWritten;
-  if (args.has("save")) {
-    const cal::CalibrationStore store(args.str("store", ""));
+  if (options.save) {
+    const cal::CalibrationStore store(options.store);
     cal::CalibrationRecord rec;
     rec.offsets = r.estimate;
     rec.rmsAngleDeg = r.solution.rmsAngleDeg;
@@ -164,26 +141,20 @@ int calibrateCommand(const Argv& argv) {
     std::fprintf(stderr, "calibrate: %s %s\n", saved.saved ? "saved" : "NOT saved:",
                  saved.saved ? saved.path.c_str() : saved.reason.c_str());
   }
-  if (args.has("json")) writeJson(args.str("json", "-"), j);
+  if (!options.common.json.empty()) writeJson(options.common.json, j);
   return r.solution.solver.converged && r.solution.accepted ? 0 : 1;
 }
 
 // eval calibration: --trials N random cases (offsets +-3 deg per parameter, placement error up
 // to 10 cm and 5 deg, a random lighting preset), each solved by both solvers.
-int evalCalibration(const Args& args) {
+int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   sim::CalibrationEvalOptions o;
-  o.field = calibrationFieldFrom(args);
-  o.trials = static_cast<int>(args.integer("trials", 100));
-  if (o.trials < 1 || o.trials > 100000) throw Error("--trials", "must be 1..100000");
-  o.seed = args.seed();
-  const std::string lighting = args.str("lighting", "sweep");
-  const std::string presets = dataPath("config/lighting.json");
-  o.lightings = lighting == "sweep" ? sim::Lighting::sweep(presets) : std::vector<sim::Lighting>{sim::Lighting::parse(lighting, presets)};
-  if (args.has("max-offset")) {
-    o.maxOffsetDeg = args.num("max-offset", 3);
-    if (!(o.maxOffsetDeg >= 0 && o.maxOffsetDeg <= 10)) throw Error("--max-offset", "must be 0..10 deg");
-  }
-  if (args.has("solver")) o.solver = cal::parseSolver(args.str("solver", "gauss-newton"));
+  o.field = calibrationFieldFrom(options.common);
+  o.trials = options.trials;
+  o.seed = options.common.seed;
+  o.lightings = lightingsFrom(options.lighting);
+  o.maxOffsetDeg = options.maxOffset;
+  o.solver = cal::parseSolver(options.solver);
   o.progress = [](int done, int total) { progress("eval calibration", done, total); };
   const sim::CalibrationEvalResult r = sim::evalCalibration(o);
 
@@ -214,26 +185,21 @@ int evalCalibration(const Args& args) {
   for (int k = 0; k < 6; ++k)
     std::fprintf(stderr, "  %-13s median %.3f  p95 %.3f  max %.3f deg\n", CameraCalibration::kNames[k],
                  r.medianAbsErrorDeg[k], r.p95AbsErrorDeg[k], r.maxAbsErrorDeg[k]);
-  writeJson(args.str("json", "-"), j);
+  writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }
 
 // bench calibration: the time of one calibration's parts -- image to sample per camera, and the
 // solve with each solver (the same samples, solved again and again; medians and maxima).
-int benchCalibration(const Args& args) {
+int benchCalibrationCommand(const BenchCalibrationOptions& options) {
   sim::CalibrationRunOptions o;
-  o.field = calibrationFieldFrom(args);
-  o.robotModel = robotModelFrom(args);
-  o.lighting = lightingFrom(args);
-  o.seed = args.seed();
-  // Random offsets (+-3 deg, from the seed) unless given.
-  std::array<double, 6> offsets{};
-  std::mt19937_64 rng(o.seed * 7919 + 17);
-  std::uniform_real_distribution<double> u(-3, 3);
-  for (double& v : offsets) v = u(rng) * kDeg;
-  o.miscalibration = args.has("miscalibration") ? miscalibrationFrom(args, o.seed) : CameraCalibration::fromArray(offsets);
-  const int repeats = static_cast<int>(args.integer("repeats", 3));
-  if (repeats < 1) throw Error("--repeats", "must be positive");
+  o.field = calibrationFieldFrom(options.common);
+  o.robotModel = options.sim.model;
+  o.lighting = lightingFrom(options.sim.lighting);
+  o.seed = options.common.seed;
+  o.miscalibration = miscalibrationFrom(options.sim, o.seed);  // random (+-3 deg, from the seed) unless given
+  const int repeats = options.repeats;
+  checkRobotModel(o.robotModel, o.field);
   std::fprintf(stderr, "bench calibration: collecting samples\n");
   const sim::CalibrationRunResult r = sim::runCalibration(o);
   if (r.solution.used.empty()) throw Error("calibration", "no samples: " + r.solution.reason);
@@ -257,7 +223,7 @@ int benchCalibration(const Args& args) {
                             {"run_wall_s", r.wallSeconds},
                             {"lighting", lightingJson(o.lighting)},
                             {"seed", o.seed}};
-  writeJson(args.str("json", "-"), j);
+  writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }
 

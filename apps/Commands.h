@@ -1,21 +1,26 @@
 #pragma once
-// The nao-soccer subcommands. Each takes its arguments after the subcommand name and returns
-// the process exit code (0 success, 1 failed run); bad usage or input throws nao::Error (exit 2).
-#include <string>
-#include <vector>
+// The bodies of the nao-soccer commands. Each gets its parsed options (apps/cli/Options.h,
+// declared and bounded in apps/cli/Declarations.cpp) and returns the exit code: 0 success,
+// 1 a failed run; bad input throws nao::Error (exit 2).
+#include "apps/cli/Options.h"
 
 namespace nao::cli {
 
-using Argv = std::vector<std::string>;
-
-int renderCommand(const Argv& args);
-int runCommand(const Argv& args);
-int benchCommand(const Argv& args);
-int perceiveCommand(const Argv& args);
-int evalCommand(const Argv& args);
-int calibrateCommand(const Argv& args);
-int walkCommand(const Argv& args);
-int kickCommand(const Argv& args);
-int trainCommand(const Argv& args);
+int renderCommand(const RenderOptions& o);
+int runCommand(const RunOptions& o);
+int runNao(const RunOptions& o);  // apps/RunNao.cpp
+int benchSimCommand(const BenchSimOptions& o);
+int benchPerceptionCommand(const BenchPerceptionOptions& o);
+int benchCalibrationCommand(const BenchCalibrationOptions& o);
+int perceiveCommand(const PerceiveOptions& o);
+int evalPerceptionCommand(const EvalPerceptionOptions& o);
+int evalCalibrationCommand(const EvalCalibrationOptions& o);
+int evalWalkCommand(const EvalMotionOptions& o);
+int evalWalkToCommand(const EvalMotionOptions& o);
+int evalGetUpCommand(const EvalMotionOptions& o);
+int walkCommand(const WalkOptions& o);
+int kickCommand(const KickOptions& o);
+int trainBallCommand(const TrainBallOptions& o);
+int calibrateCommand(const CalibrateOptions& o);
 
 }  // namespace nao::cli

@@ -12,26 +12,17 @@
 
 namespace nao::cli {
 
-int kickCommand(const Argv& argv) {
-  auto options = commonOptions();
-  options.insert(options.end(), {{"trials", "N", "kicks (default 20)"},
-                                 {"randomize", "", "a 'foreign' robot per trial: masses +-5%, joint offsets +-1 deg, friction 0.6-1"}});
-  Args args("kick", argv, options);
-  if (args.helpRequested()) {
-    std::cout << args.usage();
-    return 0;
-  }
+int kickCommand(const KickOptions& options) {
   sim::KickEvalOptions o;
-  o.trials = static_cast<int>(args.integer("trials", 20));
-  if (o.trials < 1 || o.trials > 10000) throw Error("--trials", "must be in 1..10000");
-  o.seed = args.seed();
-  o.randomize = args.has("randomize");
+  o.trials = options.trials;
+  o.seed = options.common.seed;
+  o.randomize = options.randomize;
   o.progress = [](int done, int total) { progress("kick", done, total); };
   const sim::KickEvalResult r = sim::evalKick(o);
   constexpr double kDeg = M_PI / 180;
   std::fprintf(stderr, "kick: %d trials, %d kicked, median travel %.2f m, median direction error %.1f deg, %d falls\n",
                o.trials, r.kicked, r.travelMedian, r.directionErrorMedian / kDeg, r.falls);
-  if (args.has("json")) {
+  if (!options.common.json.empty()) {
     nlohmann::json per = nlohmann::json::array();
     for (const auto& t : r.trials)
       per.push_back({{"kicked", t.kicked},
@@ -40,7 +31,7 @@ int kickCommand(const Argv& argv) {
                      {"ball_speed_m_s", t.ballSpeed},
                      {"time_s", t.time},
                      {"falls", t.falls}});
-    writeJson(args.str("json", "-"), {{"trials", o.trials},
+    writeJson(options.common.json, {{"trials", o.trials},
                                       {"kicked", r.kicked},
                                       {"falls", r.falls},
                                       {"ball_travel_median_m", r.travelMedian},

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
 #include "controllers/StandController.h"
@@ -80,46 +81,24 @@ nlohmann::json resultJson(const VisionResult& r, const CameraImage& img, const s
 
 }  // namespace
 
-int perceiveCommand(const Argv& argv) {
-  auto options = commonOptions();
-  options.insert(options.end(),
-                 {{"camera", "top|bottom", "which camera took the image (default top)"},
-                  {"head", "YAW,PITCH", "head angles in deg for the camera matrix (default 0,0)"},
-                  {"size", "WxH", "size of a raw YUV422 file (default: inferred from its length)"},
-                  {"out", "FILE.png", "write the annotated image"},
-                  {"scale", "N", "scale of the annotated image (default 1)"}});
-  Args args("perceive", argv, options, 1);
-  if (args.helpRequested()) {
-    std::cout << "usage: nao-soccer perceive IMAGE [options]   (PNG, JPEG, or raw YUYV .yuv/.yuyv/.raw)\n" << args.usage();
-    return 0;
-  }
-  if (args.positional().empty()) throw Error("perceive", "needs an image file");
-  const std::string path = args.positional()[0];
-  const std::string cam = args.str("camera", "top");
-  if (cam != "top" && cam != "bottom") throw Error("--camera", "must be top or bottom, not '" + cam + "'");
-  const CameraId camera = cam == "top" ? CameraId::Top : CameraId::Bottom;
-  int w = 0, h = 0;
-  if (args.has("size")) {
-    const std::string s = args.str("size", "");
-    if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0 || w % 2)
-      throw Error("--size", "must be WxH with an even width, not '" + s + "'");
-  }
-  const auto head = args.optionalList("head", 2).value_or(std::vector<double>{0, 0});
-  const int scale = static_cast<int>(args.integer("scale", 1));
-  if (scale < 1 || scale > 8) throw Error("--scale", "must be 1..8");
-  const VisionGeometry geometry = VisionGeometry::from(fieldFrom(args));
+int perceiveCommand(const PerceiveOptions& options) {
+  const std::string& path = options.image;
+  const CameraId camera = options.camera == "top" ? CameraId::Top : CameraId::Bottom;
+  const auto head = options.head.empty() ? std::vector<double>{0, 0} : options.head;
+  const int scale = options.scale;
+  const VisionGeometry geometry = VisionGeometry::from(fieldFrom(options.common));
 
-  const CameraImage img = sim::readImage(path, w, h, camera);
+  const CameraImage img = sim::readImage(path, options.width, options.height, camera);
   JointArray joints = StandController::standPosture();
   joints[HeadYaw] = head[0] * M_PI / 180;
   joints[HeadPitch] = head[1] * M_PI / 180;
   const CameraIntrinsics in = CameraIntrinsics::fromFovY(img.width, img.height);
   const CameraMatrix cm = computeCameraMatrix(joints, Eigen::Vector2d::Zero(), camera, CameraCalibration{}, in);
   const VisionResult r = runVision(img, cm, geometry);
-  if (args.has("out")) sim::writePng(args.str("out", ""), annotateVision(sim::rgbFromCameraImage(img), r, cm, scale));
+  if (!options.out.empty()) sim::writePng(options.out, annotateVision(sim::rgbFromCameraImage(img), r, cm, scale));
   nlohmann::json j = resultJson(r, img, path);
   j["head_deg"] = {head[0], head[1]};
-  writeJson(args.str("json", "-"), j);
+  writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }
 

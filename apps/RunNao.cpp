@@ -1,9 +1,17 @@
 // nao-soccer run --backend nao: the same robot program as in the simulator, against LoLA's
 // socket and the V4L2 cameras, with the GameController and the buttons on the blackboard.
-#include "apps/RunNao.h"
+#include "apps/Cli.h"
+#include "apps/Commands.h"
 
+#include <pthread.h>
+#include <sched.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 #include "controllers/RobotProgram.h"
@@ -19,13 +27,6 @@ namespace nao::cli {
 namespace {
 
 void logLine(const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }
-
-long ranged(const Args& args, const std::string& name, long fallback, long lo, long hi) {
-  const long v = args.integer(name, fallback);
-  if (v < lo || v > hi)
-    throw Error("--" + name, std::to_string(v) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
-  return v;
-}
 
 // --camera-settings FILE: {"top": {"width": 640, "height": 480, "auto_exposure": false,
 // "exposure": 100, "gain": 32, "auto_white_balance": false, "white_balance": 4500}, "bottom": {...}}
@@ -67,44 +68,51 @@ void applyCameraSettings(const std::string& path, std::array<V4l2CameraConfig, k
   }
 }
 
-}  // namespace
-
-std::vector<Option> naoRunOptions() {
-  return {{"lola-socket", "PATH", "nao: LoLA's Unix socket (default /tmp/robocup)"},
-          {"camera-top", "DEV", "nao: top camera device (default /dev/video-top)"},
-          {"camera-bottom", "DEV", "nao: bottom camera device (default /dev/video-bottom)"},
-          {"camera-settings", "FILE", "nao: camera resolution, exposure, gain, white balance (JSON)"},
-          {"team", "N", "nao: team number for the GameController (0 = none, default)"},
-          {"player", "N", "nao: player number 1..20 (default 1)"},
-          {"gc-port", "N", "nao: GameController UDP port (default 3838)"},
-          {"gc-return-port", "N", "nao: port of the return packets (default 3939)"},
-          {"gc-address", "IP", "nao: address to receive GameController packets on (default 0.0.0.0)"}};
+// The motion cadence (this thread: one cycle per LoLA packet) at a real-time priority where the
+// OS allows it (root, CAP_SYS_NICE, or an rtprio limit such as the NAO images' LimitRTPRIO=36):
+// SCHED_FIFO 10, below LoLA and HAL (SCHED_FIFO 20/30 on the HULKs' image), like the teams'
+// motion threads. One line either way.
+void useRealTimePriority() {
+  constexpr int kPriority = 10;
+  sched_param p{};
+  p.sched_priority = kPriority;
+  const int err = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
+  if (err == 0) {
+    logLine("run: motion cadence at real-time priority (SCHED_FIFO " + std::to_string(kPriority) + ")");
+  } else {
+    logLine("run: motion cadence at normal priority: SCHED_FIFO " + std::to_string(kPriority) + " not allowed (" +
+            std::strerror(err) + "; needs CAP_SYS_NICE or an rtprio limit, e.g. LimitRTPRIO=36 in the unit)");
+  }
 }
 
-int runNao(const Args& args) {
-  const std::string cameras = args.str("cameras", "v4l2");
-  if (cameras != "none" && cameras != "v4l2") throw Error("--cameras", "must be none or v4l2 with --backend nao");
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+}  // namespace
+
+int runNao(const RunOptions& options) {
+  const NaoRunOptions& nao = options.nao;
   std::optional<double> seconds;
-  if (args.has("seconds")) {
-    seconds = args.num("seconds", 0);
-    if (!(*seconds > 0)) throw Error("--seconds", "must be > 0");
-  }
+  if (options.common.has("--seconds")) seconds = options.seconds;
   NaoBackendConfig config;
-  config.lolaSocket = args.str("lola-socket", "/tmp/robocup");
-  config.cameras = cameras == "v4l2";
-  config.camera[0].device = args.str("camera-top", config.camera[0].device);
-  config.camera[1].device = args.str("camera-bottom", config.camera[1].device);
-  if (args.has("camera-settings")) applyCameraSettings(args.str("camera-settings", ""), config.camera);
+  config.lolaSocket = nao.lolaSocket;
+  config.cameras = options.cameras != "none";
+  config.camera[0].device = nao.cameraTop;
+  config.camera[1].device = nao.cameraBottom;
+  if (!nao.cameraSettings.empty()) applyCameraSettings(nao.cameraSettings, config.camera);
 
   GameController::Config gcConfig;
-  gcConfig.team = static_cast<int>(ranged(args, "team", 0, 0, 254));
-  gcConfig.player = static_cast<int>(ranged(args, "player", 1, 1, gc::kMaxPlayers));
-  gcConfig.port = static_cast<std::uint16_t>(ranged(args, "gc-port", gc::kPort, 1, 65535));
-  gcConfig.returnPort = static_cast<std::uint16_t>(ranged(args, "gc-return-port", gc::kReturnPort, 1, 65535));
-  gcConfig.bindAddress = args.str("gc-address", "0.0.0.0");
+  gcConfig.team = nao.team;
+  gcConfig.player = nao.player;
+  gcConfig.port = static_cast<std::uint16_t>(nao.gcPort);
+  gcConfig.returnPort = static_cast<std::uint16_t>(nao.gcReturnPort);
+  gcConfig.bindAddress = nao.gcAddress;
 
   // The field this robot plays on: a wrong file stops the start, not the game.
-  const std::string fieldPath = args.str("field", dataPath("config/field_dimensions.json"));
+  const std::string fieldPath = options.common.field.empty() ? dataPath("config/field_dimensions.json") : options.common.field;
   const FieldDimensions field = FieldDimensions::load(fieldPath);
   char size[64];
   std::snprintf(size, sizeof size, " (%.2f x %.2f m)", field.length, field.width);
@@ -114,6 +122,7 @@ int runNao(const Args& args) {
   vision::defaultBallClassifier();
 
   NaoBackend::installSignalHandlers();
+  useRealTimePriority();
   GameController gameController(gcConfig, logLine);
   NaoBackend backend(config, logLine);
   RobotProgram program;
@@ -133,7 +142,18 @@ int runNao(const Args& args) {
   // soon as LoLA has told the head id. A broken file is logged and the offsets stay zero: a
   // wrong calibration must not stop the robot.
   bool calibrationLoaded = false;
+  // CPU time per cadence (this thread's, so waiting for LoLA's next packet does not count): the
+  // budget a team sees on the Atom.
+  double cpuSumMs = 0, cpuMaxMs = 0;
+  std::uint64_t cpuCycles = 0;
+  double cpuStart = threadCpuMs();
   while (true) {
+    const double cpuNow = threadCpuMs();
+    if (cpuCycles++ > 0) {
+      cpuSumMs += cpuNow - cpuStart;
+      cpuMaxMs = std::max(cpuMaxMs, cpuNow - cpuStart);
+    }
+    cpuStart = cpuNow;
     bb.write<GameState>() = gameController.state();
     bb.write<LedRequest>().chest = chestColour(gameController.state());
     if (!program.cycle(backend)) break;
@@ -175,7 +195,11 @@ int runNao(const Args& args) {
     ret.teamNum = static_cast<std::uint8_t>(gcConfig.team);
     ret.fallen = bb.has<FallState>() && bb.read<FallState>().fallen ? 1 : 0;
     gameController.sendReturnIfDue(frame.time, ret);
-    if (seconds && frame.time >= *seconds) backend.requestStop("--seconds " + args.str("seconds", "") + " reached");
+    if (seconds && frame.time >= *seconds) {
+      char text[64];
+      std::snprintf(text, sizeof text, "--seconds %g reached", *seconds);
+      backend.requestStop(text);
+    }
   }
 
   const auto& s = backend.stats();
@@ -186,9 +210,11 @@ int runNao(const Args& args) {
                backend.stopReason().c_str(), static_cast<unsigned long long>(s.cycles), s.maxAnswerMs, meanMs,
                static_cast<unsigned long long>(s.late), static_cast<unsigned long long>(s.corrupt),
                static_cast<unsigned long long>(s.staleEvents), static_cast<unsigned long long>(s.skipped));
-  if (args.has("json")) {
+  const double cpuMeanMs = cpuCycles > 1 ? cpuSumMs / static_cast<double>(cpuCycles - 1) : 0;
+  std::fprintf(stderr, "run: CPU per cycle: mean %.3f ms, max %.3f ms (of the 12 ms cadence)\n", cpuMeanMs, cpuMaxMs);
+  if (!options.common.json.empty()) {
     const GameState& g = gameController.state();
-    writeJson(args.str("json", "-"),
+    writeJson(options.common.json,
               {{"backend", "nao"},
                {"cycles", s.cycles},
                {"packets", s.packets},
@@ -198,6 +224,7 @@ int runNao(const Args& args) {
                {"late_answers", s.late},
                {"max_answer_ms", s.maxAnswerMs},
                {"mean_answer_ms", meanMs},
+               {"cpu_ms_per_cycle", {{"mean", cpuMeanMs}, {"max", cpuMaxMs}}},
                {"stop_reason", backend.stopReason()},
                {"clean_stop", backend.stoppedCleanly()},
                {"robot", {{"body_id", backend.robotInfo().bodyId}, {"head_id", backend.robotInfo().headId}}},

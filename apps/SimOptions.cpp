@@ -3,42 +3,48 @@
 #include <cmath>
 #include <random>
 
+#include <mujoco/mujoco.h>
+
 #include "robot/Error.h"
 #include "robot/Paths.h"
+#include "sim/SceneBuilder.h"
 
 namespace nao::cli {
 
-std::vector<Option> simOptions() {
-  return {{"lighting", "SPEC", "preset (default, bright, dark, warm, cold, shadows) or key=value list"},
-          {"miscalibration", "SPEC", "injected offsets: none, random, or 6 numbers in deg"},
-          {"model", "FILE", "the robot's MJCF (default models/nao_v6.xml)"}};
+FieldDimensions fieldFrom(const CommonOptions& common, const std::string& fallback) {
+  const FieldDimensions field = FieldDimensions::load(common.field.empty() ? dataPath(fallback) : common.field);
+  checkPlaces(common, field);
+  return field;
 }
 
-FieldDimensions fieldFrom(const Args& args) {
-  return FieldDimensions::load(args.str("field", dataPath("config/field_dimensions.json")));
+sim::Lighting lightingFrom(const std::string& spec) {
+  return sim::Lighting::parse(spec, dataPath("config/lighting.json"));
 }
 
-std::string robotModelFrom(const Args& args) { return args.str("model", ""); }
-
-sim::Lighting lightingFrom(const Args& args) {
-  return sim::Lighting::parse(args.str("lighting", "default"), dataPath("config/lighting.json"));
+std::vector<sim::Lighting> lightingsFrom(const std::string& spec) {
+  const std::string file = dataPath("config/lighting.json");
+  if (spec == "sweep") return sim::Lighting::sweep(file);
+  return {sim::Lighting::parse(spec, file)};
 }
 
-CameraCalibration miscalibrationFrom(const Args& args, std::uint64_t seed) {
-  const std::string spec = args.str("miscalibration", "none");
-  if (spec == "none") return {};
+void checkRobotModel(const std::string& model, const FieldDimensions& field) {
+  if (model.empty()) return;
+  sim::SceneSpec spec;
+  spec.field = field;
+  spec.robotModel = model;
+  mj_deleteModel(sim::compileScene(spec));
+}
+
+CameraCalibration miscalibrationFrom(const SimOptions& sim, std::uint64_t seed) {
   std::array<double, 6> a{};
-  if (spec == "random") {
+  if (sim.miscalibration == "none") return {};
+  if (sim.miscalibration == "random") {
     std::mt19937_64 rng(seed * 7919 + 17);
     std::uniform_real_distribution<double> u(-3, 3);
     for (double& v : a) v = u(rng) * M_PI / 180;
     return CameraCalibration::fromArray(a);
   }
-  const auto v = args.list("miscalibration", 6);
-  for (int i = 0; i < 6; ++i) {
-    if (std::abs(v[i]) > 20) throw Error("--miscalibration", "offsets beyond +-20 deg are not a miscalibration");
-    a[i] = v[i] * M_PI / 180;
-  }
+  for (int i = 0; i < 6; ++i) a[i] = sim.miscalibrationDeg.at(i) * M_PI / 180;
   return CameraCalibration::fromArray(a);
 }
 

@@ -1,18 +1,23 @@
 #pragma once
-// Options shared by the simulator subcommands: field, lighting, injected miscalibration.
-#include "apps/Cli.h"
+// The simulator's settings from the parsed options: field, lighting, injected miscalibration.
+#include <nlohmann/json.hpp>
+
+#include "apps/cli/Options.h"
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
 #include "sim/Lighting.h"
 
 namespace nao::cli {
 
-std::vector<Option> simOptions();
-FieldDimensions fieldFrom(const Args& args);
-std::string robotModelFrom(const Args& args);
-sim::Lighting lightingFrom(const Args& args);
-// --miscalibration none|random|B_ROLL,B_PITCH,T_ROLL,T_PITCH,B2_ROLL,B2_PITCH (deg).
-CameraCalibration miscalibrationFrom(const Args& args, std::uint64_t seed);
+// The field file given with --field (or `fallback`), with every declared place checked on it.
+FieldDimensions fieldFrom(const CommonOptions& common, const std::string& fallback = "config/field_dimensions.json");
+sim::Lighting lightingFrom(const std::string& spec);
+// "sweep" (every preset of the sweep) or one lighting.
+std::vector<sim::Lighting> lightingsFrom(const std::string& spec);
+// Compiles the scene with the robot model `model` ("" = the default, not checked): a broken
+// model file is refused before a run prints anything.
+void checkRobotModel(const std::string& model, const FieldDimensions& field);
+CameraCalibration miscalibrationFrom(const SimOptions& sim, std::uint64_t seed);
 nlohmann::json calibrationDegJson(const CameraCalibration& c);
 nlohmann::json lightingJson(const sim::Lighting& l);
 

@@ -1,66 +1,46 @@
-// nao-soccer: one command for the simulator, the evaluations and the robot program.
-#include <cstdio>
-#include <exception>
-#include <functional>
+// nao-soccer: one command for the simulator, the evaluations and the robot program. The command
+// line is declared in apps/cli/; this file binds each command to its body. How the process ends
+// (exit codes, the one-line errors, output files only after a run without error) is
+// CommandLine::main's.
 #include <string>
-#include <vector>
+
+#include <opencv2/core/utils/logger.hpp>
 
 #include "apps/Commands.h"
-#include "robot/Error.h"
+#include "apps/cli/CommandLine.h"
 
 namespace {
 
-struct Subcommand {
-  const char* name;
-  const char* summary;
-  std::function<int(const nao::cli::Argv&)> run;
-};
+using nao::cli::CommandLine;
 
-const std::vector<Subcommand>& subcommands() {
-  static const std::vector<Subcommand> list = {
-      {"render", "render a simulated camera image (or --view field for a top-down view)", nao::cli::renderCommand},
-      {"run", "run the robot program on a backend (sim or nao)", nao::cli::runCommand},
-      {"bench", "speed figures as JSON (sim, perception)", nao::cli::benchCommand},
-      {"perceive", "the vision pipeline on a PNG/JPEG/raw YUV422 image: JSON and an annotated PNG", nao::cli::perceiveCommand},
-      {"eval", "accuracy against ground truth over random cases (perception, calibration)", nao::cli::evalCommand},
-      {"walk", "walk in the simulator (a speed, or --to a target): distance, speed, falls, odometry error", nao::cli::walkCommand},
-      {"kick", "kick the ball in the simulator (--trials N): ball travel, direction error, falls", nao::cli::kickCommand},
-      {"train", "train the ball classifier from simulated images (train ball)", nao::cli::trainCommand},
-      {"calibrate", "calibrate the six camera offsets at the goal box (sim): true vs estimated", nao::cli::calibrateCommand},
+void bind(CommandLine& cl) {
+  auto& o = cl.options();
+  auto to = [&](const std::string& path, auto body, const auto& options) {
+    cl.command(path)->run = [body, &options] { return body(options); };
   };
-  return list;
-}
-
-void printHelp(std::FILE* out) {
-  std::fprintf(out, "usage: nao-soccer <command> [options]   (nao-soccer <command> --help for its options)\n\ncommands:\n");
-  for (const auto& c : subcommands()) std::fprintf(out, "  %-22s %s\n", c.name, c.summary);
+  to("render", nao::cli::renderCommand, o.render);
+  to("run", nao::cli::runCommand, o.run);
+  to("bench sim", nao::cli::benchSimCommand, o.benchSim);
+  to("bench perception", nao::cli::benchPerceptionCommand, o.benchPerception);
+  to("bench calibration", nao::cli::benchCalibrationCommand, o.benchCalibration);
+  to("perceive", nao::cli::perceiveCommand, o.perceive);
+  to("eval perception", nao::cli::evalPerceptionCommand, o.evalPerception);
+  to("eval calibration", nao::cli::evalCalibrationCommand, o.evalCalibration);
+  to("eval walk", nao::cli::evalWalkCommand, o.evalWalk);
+  to("eval walk-to", nao::cli::evalWalkToCommand, o.evalWalkTo);
+  to("eval getup", nao::cli::evalGetUpCommand, o.evalGetUp);
+  to("walk", nao::cli::walkCommand, o.walk);
+  to("kick", nao::cli::kickCommand, o.kick);
+  to("train ball", nao::cli::trainBallCommand, o.trainBall);
+  to("calibrate", nao::cli::calibrateCommand, o.calibrate);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    printHelp(stderr);
-    return 2;
-  }
-  const std::string name = argv[1];
-  if (name == "--help" || name == "-h" || name == "help") {
-    printHelp(stdout);
-    return 0;
-  }
-  const nao::cli::Argv args(argv + 2, argv + argc);
-  for (const auto& c : subcommands()) {
-    if (name != c.name) continue;
-    try {
-      return c.run(args);
-    } catch (const nao::Error& e) {
-      std::fprintf(stderr, "nao-soccer %s: %s\n", c.name, e.what());
-      return 2;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "nao-soccer %s: internal error: %s\n", c.name, e.what());
-      return 1;
-    }
-  }
-  std::fprintf(stderr, "nao-soccer: unknown command '%s' (nao-soccer --help lists them)\n", name.c_str());
-  return 2;
+  // OpenCV's own log lines would break the one-line errors; failures reach us as exceptions.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  CommandLine cl;
+  bind(cl);
+  return cl.main(argc, argv);
 }

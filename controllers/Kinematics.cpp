@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "robot/JointLimits.h"
 #include "robot/RobotDimensions.h"
 
 namespace nao {
@@ -21,34 +22,13 @@ struct Limit {
   double min, max;
 };
 
-// nao-v6.md, LoLA order.
-constexpr std::array<Limit, NumJoints> kLimits = {{
-    {-119.5 * kDeg, 119.5 * kDeg},   // HeadYaw
-    {-38.5 * kDeg, 29.5 * kDeg},     // HeadPitch
-    {-119.5 * kDeg, 119.5 * kDeg},   // LShoulderPitch
-    {-18 * kDeg, 76 * kDeg},         // LShoulderRoll
-    {-119.5 * kDeg, 119.5 * kDeg},   // LElbowYaw
-    {-88.5 * kDeg, -2 * kDeg},       // LElbowRoll
-    {-104.5 * kDeg, 104.5 * kDeg},   // LWristYaw
-    {-65.62 * kDeg, 42.44 * kDeg},   // LHipYawPitch
-    {-21.74 * kDeg, 45.29 * kDeg},   // LHipRoll
-    {-88 * kDeg, 27.73 * kDeg},      // LHipPitch
-    {-5.29 * kDeg, 121.04 * kDeg},   // LKneePitch
-    {-68.15 * kDeg, 52.86 * kDeg},   // LAnklePitch
-    {-22.79 * kDeg, 44.06 * kDeg},   // LAnkleRoll
-    {-45.29 * kDeg, 21.74 * kDeg},   // RHipRoll
-    {-88 * kDeg, 27.73 * kDeg},      // RHipPitch
-    {-5.90 * kDeg, 121.47 * kDeg},   // RKneePitch
-    {-67.97 * kDeg, 53.40 * kDeg},   // RAnklePitch
-    {-44.06 * kDeg, 22.80 * kDeg},   // RAnkleRoll
-    {-119.5 * kDeg, 119.5 * kDeg},   // RShoulderPitch
-    {-76 * kDeg, 18 * kDeg},         // RShoulderRoll
-    {-119.5 * kDeg, 119.5 * kDeg},   // RElbowYaw
-    {2 * kDeg, 88.5 * kDeg},         // RElbowRoll
-    {-104.5 * kDeg, 104.5 * kDeg},   // RWristYaw
-    {0, 1},                          // LHand
-    {0, 1},                          // RHand
-}};
+constexpr std::array<Limit, NumJoints> limitsInRadians() {
+  std::array<Limit, NumJoints> out{};
+  for (int j = 0; j < NumJoints; ++j) out[j] = {kJointLimitsDeg[j].min * kDeg, kJointLimitsDeg[j].max * kDeg};
+  out[LHand] = out[RHand] = {0, 1};  // the opening, 0..1
+  return out;
+}
+constexpr std::array<Limit, NumJoints> kLimits = limitsInRadians();
 
 double sideSign(BodySide side) { return side == BodySide::Left ? 1.0 : -1.0; }
 

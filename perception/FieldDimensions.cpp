@@ -142,6 +142,19 @@ void FieldDimensions::validate(const std::string& sourceName) const {
   positive("goal.innerWidth", goalInnerWidth);
   positive("goal.depth", goalDepth);
   positive("lineWidth", lineWidth);
+  // No SPL field comes near these; a value beyond them is a typo (metres for millimetres) that
+  // would build a simulator world kilometres wide.
+  auto atMost = [&](const char* name, double v, double max) {
+    if (v > max) throw Error(sourceName, std::string(name) + ": " + fmt(v) + " m is implausible (at most " + fmt(max) + " m)");
+  };
+  atMost("field.length", length, 30);
+  atMost("field.width", width, 20);
+  atMost("field.borderStripWidth", borderStripWidth, 5);
+  atMost("field.penaltyCrossSize", penaltyCrossSize, 1);
+  atMost("goal.postDiameter", goalPostDiameter, 0.5);
+  atMost("goal.height", goalHeight, 3);
+  atMost("goal.depth", goalDepth, 3);
+  atMost("lineWidth", lineWidth, 0.5);
 
   // name must be < limit (limitName = value)
   auto less = [&](const char* name, double v, const std::string& limitName, double limit) {

@@ -18,4 +18,16 @@ class Error : public std::runtime_error {
   std::string where_;
 };
 
+// A run that could not finish for a reason outside the input: a file that cannot be written
+// (a full disk), an engine error. Exit 1 with one line naming `where`.
+class RunFailure : public std::runtime_error {
+ public:
+  RunFailure(std::string where, const std::string& what)
+      : std::runtime_error(where.empty() ? what : where + ": " + what), where_(std::move(where)) {}
+  const std::string& where() const { return where_; }
+
+ private:
+  std::string where_;
+};
+
 }  // namespace nao

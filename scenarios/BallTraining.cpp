@@ -13,6 +13,7 @@
 #include "perception/vision/BallDetector.h"
 #include "perception/vision/ScanLineRegionizer.h"
 #include "robot/Error.h"
+#include "robot/OutputFiles.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
 #include "sim/SceneBuilder.h"
@@ -78,15 +79,16 @@ cv::Mat1f augmentBallPatch(const cv::Mat1f& raw, std::mt19937_64& rng) {
 }
 
 void BallSamples::save(const std::string& path) const {
-  std::ofstream f(path, std::ios::binary);
+  std::string bytes;
+  auto append = [&bytes](const void* data, std::size_t size) { bytes.append(static_cast<const char*>(data), size); };
   const std::int32_t header[3] = {kSamplesMagic, static_cast<std::int32_t>(patches.size()), frames};
-  f.write(reinterpret_cast<const char*>(header), sizeof header);
+  append(header, sizeof header);
   for (std::size_t i = 0; i < patches.size(); ++i) {
     const std::int32_t tags[2] = {labels[i], heldOut[i]};
-    f.write(reinterpret_cast<const char*>(tags), sizeof tags);
-    f.write(reinterpret_cast<const char*>(patches[i].ptr<float>()), sizeof(float) * patches[i].total());
+    append(tags, sizeof tags);
+    append(patches[i].ptr<float>(), sizeof(float) * patches[i].total());
   }
-  if (!f) throw Error(path, "cannot write the ball samples");
+  io::writeFile(path, bytes);
 }
 
 BallSamples BallSamples::load(const std::string& path) {

@@ -14,6 +14,7 @@
 #include "perception/Geometry.h"
 #include "perception/calibration/SampleExtraction.h"
 #include "robot/Error.h"
+#include "robot/OutputFiles.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
 #include "sim/ImageIO.h"
@@ -157,9 +158,7 @@ CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
   CalibrationRunResult result;
   result.truth = o.miscalibration;
   if (!o.imagesDir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(o.imagesDir, ec);
-    if (ec) throw Error(o.imagesDir, "cannot create the images folder: " + ec.message());
+    io::makeDirectories(o.imagesDir);
   }
 
   // The world: the robot at the challenge's initial position.

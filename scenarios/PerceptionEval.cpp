@@ -12,6 +12,7 @@
 #include "perception/Geometry.h"
 #include "perception/vision/Annotate.h"
 #include "perception/vision/VisionPipeline.h"
+#include "robot/OutputFiles.h"
 #include "robot/Paths.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
@@ -322,6 +323,8 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
   if (lightings.empty()) lightings.push_back(Lighting::parse("default", dataPath("config/lighting.json")));
 
   PerceptionEvalResult result;
+  if (!options.imagesDir.empty()) io::makeDirectories(options.imagesDir);
+  if (!options.failuresDir.empty()) io::makeDirectories(options.failuresDir);
   for (const auto& l : lightings) {
     result.lightingOrder.push_back(l.name);
     result.byLighting[l.name];
@@ -405,19 +408,23 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
             writePng(options.failuresDir + name + "_raw.png", img);
             // How to render this scene again.
             const auto deg = offsets.toArray();
-            if (std::FILE* f = std::fopen((options.failuresDir + name + ".txt").c_str(), "w")) {
-              std::fprintf(f, "render --camera %s --pose %.4f,%.4f,%.3f --head %.3f,%.3f --ball %.3f,%.3f --lighting %s "
-                              "--miscalibration %.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
-                           cameraName(camera), pose.x(), pose.y(), pose.z() * 180 / M_PI, posture[HeadYaw] * 180 / M_PI,
-                           posture[HeadPitch] * 180 / M_PI, ball.x(), ball.y(), lighting.name.c_str(),
-                           deg[0] / kDeg, deg[1] / kDeg, deg[2] / kDeg, deg[3] / kDeg, deg[4] / kDeg, deg[5] / kDeg);
-              for (const auto& tl : truth.lines)
-                std::fprintf(f, "line %s vis %.2f img %.0f %.0f %.0f %.0f\n", tl.name.c_str(), tl.visibleLength,
-                             tl.imageFrom.x(), tl.imageFrom.y(), tl.imageTo.x(), tl.imageTo.y());
-              for (const auto& b : truth.balls5)
-                std::fprintf(f, "ball_px %.1f %.1f r %.1f dist %.2f\n", b.image.x(), b.image.y(), b.radiusPx, b.distance);
-              std::fclose(f);
-            }
+            std::string how;
+            auto line = [&how](const char* format, auto... values) {
+              char buf[512];
+              std::snprintf(buf, sizeof buf, format, values...);
+              how += buf;
+            };
+            line("render --camera %s --pose %.4f,%.4f,%.3f --head %.3f,%.3f --ball %.3f,%.3f --lighting %s "
+                 "--miscalibration %.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                 cameraName(camera), pose.x(), pose.y(), pose.z() * 180 / M_PI, posture[HeadYaw] * 180 / M_PI,
+                 posture[HeadPitch] * 180 / M_PI, ball.x(), ball.y(), lighting.name.c_str(), deg[0] / kDeg,
+                 deg[1] / kDeg, deg[2] / kDeg, deg[3] / kDeg, deg[4] / kDeg, deg[5] / kDeg);
+            for (const auto& tl : truth.lines)
+              line("line %s vis %.2f img %.0f %.0f %.0f %.0f\n", tl.name.c_str(), tl.visibleLength, tl.imageFrom.x(),
+                   tl.imageFrom.y(), tl.imageTo.x(), tl.imageTo.y());
+            for (const auto& b : truth.balls5)
+              line("ball_px %.1f %.1f r %.1f dist %.2f\n", b.image.x(), b.image.y(), b.radiusPx, b.distance);
+            io::writeFile(options.failuresDir + name + ".txt", how);
           }
         }
       }

@@ -14,6 +14,7 @@
 #include "controllers/StandController.h"
 #include "perception/calibration/CalibrationStore.h"
 #include "robot/Error.h"
+#include "robot/OutputFiles.h"
 #include "sim/CameraRenderer.h"
 #include "sim/FieldView.h"
 #include "sim/ImageIO.h"
@@ -40,9 +41,7 @@ SimRunResult runSim(const SimRunOptions& options) {
 
   SimRunResult result;
   if (!options.imagesDir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(options.imagesDir, ec);
-    if (ec) throw Error(options.imagesDir, "cannot create the images folder: " + ec.message());
+    io::makeDirectories(options.imagesDir);
   }
 
   std::unique_ptr<CameraRenderer> renderer;

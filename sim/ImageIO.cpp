@@ -1,7 +1,10 @@
 #include "sim/ImageIO.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,6 +13,7 @@
 #include <vector>
 
 #include "robot/Error.h"
+#include "robot/OutputFiles.h"
 
 namespace nao::sim {
 
@@ -50,6 +54,35 @@ void checkComplete(const std::string& path, const std::vector<std::uint8_t>& byt
   if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff &&
       !endsWithin(bytes, {0xff, 0xd9}, 4096))
     throw Error(path, "truncated JPEG (no end-of-image marker)");
+}
+
+// libpng and libjpeg print their own warnings on stderr ("libpng warning: iCCP: ...", "Corrupt
+// JPEG data: ..."). Decoding with stderr caught keeps one image to at most one line: dropped when
+// the image decodes, folded into the error when it does not.
+cv::Mat decodeQuietly(const std::vector<std::uint8_t>& bytes, std::string& printed) {
+  std::fflush(stderr);
+  std::FILE* sink = std::tmpfile();
+  const int saved = sink ? ::dup(2) : -1;
+  if (saved >= 0) ::dup2(::fileno(sink), 2);
+  cv::Mat bgr;
+  std::string exception;
+  try {
+    bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
+  } catch (const cv::Exception& e) {
+    exception = e.err;
+  }
+  if (saved >= 0) {
+    std::fflush(stderr);
+    ::dup2(saved, 2);
+    ::close(saved);
+    std::rewind(sink);
+    char line[256] = "";
+    if (std::fgets(line, sizeof line, sink)) printed = line;
+    while (!printed.empty() && (printed.back() == '\n' || printed.back() == '\r')) printed.pop_back();
+  }
+  if (sink) std::fclose(sink);
+  if (!exception.empty()) printed = exception + (printed.empty() ? "" : "; " + printed);
+  return bgr;
 }
 
 }  // namespace
@@ -125,11 +158,7 @@ void writePng(const std::string& path, const cv::Mat& rgb) {
   } catch (const cv::Exception& e) {
     throw Error(path, std::string("cannot encode PNG: ") + e.err);
   }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error(path, "cannot open for writing");
-  out.write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
-  out.close();
-  if (!out) throw Error(path, "write failed");
+  io::writeFile(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 void writePng(const std::string& path, const CameraImage& image) {
@@ -163,14 +192,11 @@ CameraImage readImage(const std::string& path, int width, int height, CameraId c
     return image;
   }
   checkComplete(path, bytes);
-  cv::Mat bgr;
-  try {
-    bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    throw Error(path, std::string("cannot decode image: ") + e.err);
-  }
+  std::string printed;
+  cv::Mat bgr = decodeQuietly(bytes, printed);
   if (bgr.empty() || bgr.cols < 2 || bgr.rows < 1)
-    throw Error(path, "not a readable PNG or JPEG image (corrupt or truncated?)");
+    throw Error(path, "not a readable PNG or JPEG image (corrupt or truncated?)" +
+                          (printed.empty() ? std::string() : ": " + printed));
   if (bgr.cols % 2 != 0) bgr = bgr.colRange(0, bgr.cols - 1).clone();
   cv::Mat rgb;
   cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "perception/FieldDimensions.h"
+#include "sim/MujocoMessages.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
 
@@ -673,6 +674,7 @@ std::string buildSceneXml(const SceneSpec& spec) {
 }
 
 mjModel_* compileScene(const SceneSpec& spec) {
+  routeMujocoMessages();
   const std::string xml = buildSceneXml(spec);
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());

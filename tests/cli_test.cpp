@@ -6,6 +6,10 @@
 #include <fstream>
 #include <string>
 
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
 #include "support/RunCommand.h"
 
 namespace {
@@ -18,6 +22,11 @@ std::string tempFile(const std::string& name, const std::string& content) {
   const std::string path = std::string(::testing::TempDir()) + name;
   std::ofstream(path) << content;
   return path;
+}
+
+std::string slurpFile(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
 int lines(const std::string& s) {
@@ -37,7 +46,37 @@ void expectOneLineError(const Result& r, const std::string& mustContain1, const 
 
 const std::string kOut = " --out " + std::string(::testing::TempDir()) + "cli.png";
 
-TEST(Cli, UnknownFlag) { expectOneLineError(run("render --camera top --frobnicate 3" + kOut), "--frobnicate", "unknown option"); }
+TEST(Cli, UnknownFlag) { expectOneLineError(run("render --camera top --frobnicate 3" + kOut), "--frobnicate", "not an option"); }
+
+// An option another command takes is refused, not ignored (eval walk-to has no field).
+TEST(Cli, OptionOfAnotherCommand) {
+  expectOneLineError(run("eval walk-to --field config/field_dimensions.json"), "--field", "not an option of 'eval walk-to'");
+  expectOneLineError(run("eval perception --randomize"), "--randomize");
+  expectOneLineError(run("run --backend sim --team 5"), "--team", "--backend nao");
+}
+
+TEST(Cli, NumbersAreBounded) {
+  expectOneLineError(run("render --seed -1" + kOut), "--seed", "0..4294967295");
+  expectOneLineError(run("render --seed 4294967296" + kOut), "--seed");
+  expectOneLineError(run("eval walk --trials 99999999999"), "--trials");
+  expectOneLineError(run("walk --seconds 1e30"), "--seconds", "0.1..3600 s");
+  expectOneLineError(run("walk --seconds 1e-300"), "--seconds");
+  expectOneLineError(run("walk --seconds nan"), "--seconds");
+  expectOneLineError(run("render --head 1e30,0" + kOut), "--head", "YAW");
+  expectOneLineError(run("render --head 0,35" + kOut), "--head", "PITCH");  // beyond HeadPitch's 29.5 deg
+  // The pose against the field file: 5.3 m is beyond the standard field's border (5.2 m)...
+  expectOneLineError(run("render --pose 5.3,0,0" + kOut), "--pose", "off this field");
+  // ...and beyond the reduced field's much sooner.
+  expectOneLineError(run("render --ball 4.6,0 --field " + std::string(NAO_SOURCE_DIR) + "/config/field_dimensions_reduced.json" + kOut),
+                     "--ball");
+}
+
+// One error stays one line, whatever the input echoes.
+TEST(Cli, ControlCharactersAreEscaped) {
+  const Result r = run("render --lighting $'bo\ngus\x1b[31m'" + kOut);
+  expectOneLineError(r, "--lighting", "\\n");
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+}
 
 TEST(Cli, UnknownCommand) { expectOneLineError(run("fly"), "fly"); }
 
@@ -89,6 +128,55 @@ TEST(Cli, TrainTooFewScenes) { expectOneLineError(run("train ball --scenes 2"), 
 
 TEST(Cli, TrainCorruptSamples) {
   expectOneLineError(run("train ball --samples " + tempFile("samples.bin", "BSM1 but not really")), "samples.bin");
+}
+
+// A full disk is a failed run (exit 1) naming the file, and the picture the run had made is
+// not left behind half a result.
+TEST(Cli, FullDiskFailsAndLeavesNothing) {
+  if (!std::ifstream("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const std::string png = std::string(::testing::TempDir()) + "fulldisk.png";
+  std::remove(png.c_str());
+  const Result r = run("render --camera bottom --out " + png + " --json /dev/full");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("/dev/full"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(png).good()) << png << " was left behind";
+}
+
+// MuJoCo's warnings go to stderr as one line: stdout carries the JSON alone, and no
+// MUJOCO_LOG.TXT appears. A robot with 320 studs under its left sole overflows MuJoCo's contact
+// buffer at the first step (a warning, not an error: the run goes on).
+TEST(Cli, MujocoWarningKeepsJsonOnStdout) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "mujoco_warning";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string model = slurpFile(std::string(NAO_SOURCE_DIR) + "/models/nao_v6.xml");
+  const std::string sole = "<geom name=\"LFoot_geom\"";
+  const auto at = model.find(sole);
+  ASSERT_NE(at, std::string::npos);
+  std::string studs;
+  for (int i = 0; i < 320; ++i) {
+    char g[200];
+    std::snprintf(g, sizeof g, "<geom type=\"sphere\" size=\"0.004\" pos=\"%.4f %.4f -0.0412\" mass=\"0.00001\"/>",
+                  -0.04 + 0.12 * (i % 20) / 20, -0.035 + 0.08 * (i / 20) / 16);
+    studs += g;
+  }
+  model.insert(model.find("/>", at) + 2, studs);
+  std::ofstream((dir / "nao_studs.xml").string()) << model;
+  const std::string cmd = "cd " + dir.string() + " && " + NAO_BINARY +
+                          " run --model nao_studs.xml --seconds 0.5 --cameras off --json - 2>stderr.txt";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[4096];
+  while (std::size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  EXPECT_EQ(pclose(p), 0);
+  const auto json = nlohmann::json::parse(out, nullptr, false);
+  EXPECT_FALSE(json.is_discarded()) << "stdout is not JSON:\n" << out;
+  const std::string err = slurpFile((dir / "stderr.txt").string());
+  EXPECT_NE(err.find("nao-soccer: MuJoCo warning: Pre-allocated contact buffer is full"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "MUJOCO_LOG.TXT"));
 }
 
 TEST(Cli, HelpExitsZero) {

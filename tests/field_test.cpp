@@ -187,6 +187,10 @@ TEST_F(FieldFiles, InconsistentSizes) {
   expectError(edit("centerCircleDiameter", "6.5"), "field.centerCircleDiameter");
   expectError(edit("depth", "0.8"), "goal.depth");
   expectError(edit("innerWidth", "4.0"), "goal.innerWidth");
+  // Absurd sizes (metres typed as millimetres) are refused, naming the key.
+  expectError(edit("length", "9000"), "field.length");
+  expectError(edit("borderStripWidth", "700"), "field.borderStripWidth");
+  expectError(edit("height", "800"), "goal.height");
 }
 
 TEST(FieldDimensions, ValidateProgrammatic) {

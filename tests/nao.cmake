@@ -20,13 +20,10 @@ target_compile_definitions(lola_test PRIVATE MSGPACK_NO_BOOST)
 nao_add_test(gamecontroller_test SOURCES gamecontroller_test.cpp LIBS nao_robot LABELS nao)
 nao_add_test(v4l2_test SOURCES v4l2_test.cpp LIBS nao_robot LABELS nao)
 
-# robot/deploy/deploy.sh --dry-run: the staged folder, the venue's field file in place, the
-# staged start script running the staged program.
-add_test(NAME deploy_test COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/deploy_test.sh $<TARGET_FILE:nao-soccer> ${CMAKE_SOURCE_DIR})
-set_tests_properties(deploy_test PROPERTIES TIMEOUT 120 LABELS "nao")
+# deploy_test (robot/deploy/deploy.sh --dry-run) is in tests/robot_bundle.cmake, with the robot bundle's tests.
 
-# libFuzzer targets for the two parsers that read bytes from the network (.ci/fuzz.sh builds
-# and runs them in build-fuzz with clang). The parsers are compiled into each target with
+# libFuzzer targets for the parsers that read bytes from the network and for the command line
+# (.ci/fuzz.sh builds and runs them in build-fuzz with clang). The parsers are compiled into each target with
 # coverage instrumentation.
 option(NAO_FUZZ "Build the libFuzzer targets (needs clang)" OFF)
 if(NAO_FUZZ)
@@ -44,6 +41,12 @@ if(NAO_FUZZ)
   endfunction()
   nao_fuzz_target(lola_fuzz fuzz/lola_fuzz.cpp ${CMAKE_SOURCE_DIR}/robot/nao/LolaPacket.cpp)
   nao_fuzz_target(gamecontroller_fuzz fuzz/gamecontroller_fuzz.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp)
+  # The declared command line (apps/cli/): argv words from the fuzzer, parsed, never run.
+  nao_fuzz_target(argv_fuzz fuzz/argv_fuzz.cpp ${CMAKE_SOURCE_DIR}/apps/cli/CommandLine.cpp
+                  ${CMAKE_SOURCE_DIR}/apps/cli/Declarations.cpp ${CMAKE_SOURCE_DIR}/robot/OutputFiles.cpp)
+  find_package(CLI11 REQUIRED CONFIG)
+  target_link_libraries(argv_fuzz PRIVATE CLI11::CLI11 nlohmann_json::nlohmann_json)
+  target_compile_definitions(argv_fuzz PRIVATE NAO_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   # Seed inputs (a valid packet of each kind and a few damaged ones), written at run time.
   add_executable(fuzz_seeds fuzz/fuzz_seeds.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp)
   target_include_directories(fuzz_seeds PRIVATE ${CMAKE_SOURCE_DIR})

@@ -391,7 +391,8 @@ TEST(ImageIOTest, BadFilesGiveErrorsNotCrashes) {
   expectError(dir.write("odd.yuv", std::string(63 * 48 * 2, '\0')), 63, 48);
   // Standard sizes are recognised without --size.
   EXPECT_EQ(readImage(dir.write("qvga.yuv", std::string(320 * 240 * 2, '\x80'))).width, 320);
-  EXPECT_THROW(writePng(dir.path("no_such_dir/x.png"), rgb), Error);
+  // A file that cannot be written is a failed run (exit 1), not bad input.
+  EXPECT_THROW(writePng(dir.path("no_such_dir/x.png"), rgb), nao::RunFailure);
   EXPECT_THROW(writePng(dir.path("bad.png"), CameraImage{}), Error);
 }
 

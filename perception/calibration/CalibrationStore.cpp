@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "robot/Error.h"
+#include "robot/OutputFiles.h"
 #include "robot/Paths.h"
 
 namespace nao::calibration {
@@ -128,13 +129,8 @@ SaveOutcome CalibrationStore::save(const std::string& headId, const CalibrationR
     out.reason = buf;
     return out;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(dir_, ec);
-  if (ec) throw Error(dir_, "cannot create the calibration folder: " + ec.message());
-  std::ofstream f(out.path, std::ios::binary | std::ios::trunc);
-  if (!f) throw Error(out.path, "cannot open for writing");
-  f << serialize(headId, r);
-  if (!f) throw Error(out.path, "write failed");
+  io::makeDirectories(dir_);
+  io::writeFile(out.path, serialize(headId, r));
   out.saved = true;
   return out;
 }

@@ -10,6 +10,7 @@
 
 #include "perception/vision/ColourTests.h"
 #include "robot/Error.h"
+#include "robot/OutputFiles.h"
 #include "robot/Paths.h"
 
 namespace nao::vision {
@@ -124,11 +125,13 @@ BallClassifier BallClassifier::load(const std::string& path) {
 
 void BallClassifier::save(const std::string& path) const {
   if (!valid()) throw Error(path, "no trained ball classifier to save");
-  try {
-    mlp_->save(path);
-  } catch (const cv::Exception& e) {
-    throw Error(path, "cannot write the ball classifier model (" + e.msg.substr(0, e.msg.find('\n')) + ")");
-  }
+  io::writeFileWith(path, [&](const std::string& temp) {
+    try {
+      mlp_->save(temp);
+    } catch (const cv::Exception& e) {
+      throw RunFailure(path, "cannot write the ball classifier model (" + e.err + ")");
+    }
+  });
 }
 
 BallClassifier BallClassifier::train(const cv::Mat1f& features, const std::vector<int>& labels,

@@ -1,5 +1,6 @@
 #pragma once
 // Runs the nao-soccer binary (NAO_BINARY) with `args` in a shell; stdout and stderr together.
+// With a time limit, a run still going after it is killed (exit 137): a hang fails the test.
 #include <sys/wait.h>
 
 #include <array>
@@ -13,8 +14,9 @@ struct CommandResult {
   std::string out;  // stdout + stderr
 };
 
-inline CommandResult runCommand(const std::string& args) {
-  const std::string cmd = std::string(NAO_BINARY) + " " + args + " 2>&1";
+inline CommandResult runCommand(const std::string& args, int timeoutSeconds = 0) {
+  const std::string limit = timeoutSeconds > 0 ? "timeout -s KILL " + std::to_string(timeoutSeconds) + " " : "";
+  const std::string cmd = limit + std::string(NAO_BINARY) + " " + args + " 2>&1";
   CommandResult r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;

@@ -1,0 +1,276 @@
+// Every nao-soccer command and its options: the one place that says what a command takes, in
+// which unit and range, with which default. apps/main.cpp binds each command to its run function.
+#include <arpa/inet.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <CLI/CLI.hpp>
+
+#include "apps/cli/CommandLine.h"
+#include "apps/cli/Options.h"
+#include "robot/JointLimits.h"
+#include "robot/OutputFiles.h"
+#include "robot/Paths.h"
+#include "robot/nao/GameController.h"
+
+namespace nao::cli {
+
+namespace {
+
+using E = OptionSpec::Element;
+
+const std::string kFieldFile = "config/field_dimensions.json";
+const std::string kLightingHelp =
+    "lighting: a preset (default, bright, dark, warm, cold, shadows) or a key=value list "
+    "(intensity, temperature, shadows, elevation, azimuth, ambient, noise; config/lighting.json)";
+
+// A robot pose on the field; x and y are checked against the field file (with its border).
+std::vector<E> poseElements() { return {{"X", "m", -20, 20}, {"Y", "m", -20, 20}, {"THETA_DEG", "deg", -360, 360}}; }
+std::vector<E> headElements() {
+  return {{"YAW", "deg", kJointLimitsDeg[HeadYaw].min, kJointLimitsDeg[HeadYaw].max},
+          {"PITCH", "deg", kJointLimitsDeg[HeadPitch].min, kJointLimitsDeg[HeadPitch].max}};
+}
+std::vector<E> offsetElements() {
+  std::vector<E> e;
+  for (const char* n : {"B_ROLL", "B_PITCH", "T_ROLL", "T_PITCH", "B2_ROLL", "B2_PITCH"}) e.push_back({n, "deg", -20, 20});
+  return e;
+}
+
+void simOptions(Command& c, SimOptions& s, bool miscalibration = true) {
+  c.text("--lighting", s.lighting, "SPEC", kLightingHelp + " (default " + s.lighting + ")");
+  if (miscalibration)
+    c.choiceOrNumbers("--miscalibration", s.miscalibration, s.miscalibrationDeg, {"none", "random"}, offsetElements(),
+                      "injected camera offsets: none, random (+-3 deg each, from --seed) or body, top and bottom "
+                      "roll and pitch");
+  c.inputFile("--model", s.model, "the robot's MJCF (default models/nao_v6.xml)");
+}
+
+std::string ipv4Problem(const std::string& s) {
+  in_addr a{};
+  return ::inet_pton(AF_INET, s.c_str(), &a) == 1 ? "" : "'" + s + "' is not an IPv4 address";
+}
+
+// --seed, --json and --field (the standard field by default): what most commands take.
+void seedJsonField(Command& c) {
+  c.seed();
+  c.json();
+  c.field(kFieldFile);
+}
+
+std::string pathProblem(const std::string& s) { return s.empty() ? "an empty path" : ""; }
+
+}  // namespace
+
+void CommandLine::declare() {
+  Options& o = *options_;
+  CLI::App* root = root_.get();
+
+  {
+    RenderOptions& r = o.render;
+    Command& c = leaf(root, "render", "one simulated camera image (or --view field: the field from above)", r.common);
+    seedJsonField(c);
+    simOptions(c, r.sim);
+    c.choice("--camera", r.camera, {"top", "bottom"}, "which camera");
+    c.choice("--view", r.view, {"camera", "field"}, "a camera image or a top-down view of the field");
+    c.numbers("--pose", r.pose, poseElements(), "the robot's pose on the field (default 0,0,0)");
+    c.onField("--pose", r.pose);
+    c.numbers("--head", r.head, headElements(), "head angles within the joints' limits (default 0,0)");
+    c.numbers("--ball", r.ball, {{"X", "m", -20, 20}, {"Y", "m", -20, 20}}, "a ball on the field");
+    c.onField("--ball", r.ball);
+    c.outputFile("--out", r.out, "where to write the PNG")->required();
+  }
+  {
+    RunOptions& r = o.run;
+    Command& c = leaf(root, "run", "the robot program on a backend: the simulator (sim) or a NAO (nao)", r.common);
+    c.choice("--backend", r.backend, {"sim", "nao"}, "where the robot program runs");
+    seedJsonField(c);
+    simOptions(c, r.sim);
+    c.number("--seconds", r.seconds, 0.1, 86400, "s", "how long to run (nao: until stopped unless given; sim: at most 3600)");
+    c.numbers("--pose", r.pose, poseElements(), "sim: the start pose (default: the calibration position)");
+    c.onField("--pose", r.pose);
+    c.choice("--cameras", r.cameras, {"on", "off", "none", "v4l2"},
+             "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2 (default v4l2)");
+    c.outputFolder("--images", r.images, "sim: camera PNGs once a second and a field view into DIR");
+    NaoRunOptions& n = r.nao;
+    c.text("--lola-socket", n.lolaSocket, "PATH", "nao: LoLA's Unix socket (default /tmp/robocup)", pathProblem);
+    c.text("--camera-top", n.cameraTop, "DEV", "nao: top camera device (default /dev/video-top)", pathProblem);
+    c.text("--camera-bottom", n.cameraBottom, "DEV", "nao: bottom camera device (default /dev/video-bottom)", pathProblem);
+    c.inputFile("--camera-settings", n.cameraSettings, "nao: camera resolution, exposure, gain, white balance (JSON)");
+    c.count("--team", n.team, 0, 254, "nao: team number for the GameController (0: none)");
+    c.count("--player", n.player, 1, gc::kMaxPlayers, "nao: player number");
+    c.count("--gc-port", n.gcPort, 1, 65535, "nao: GameController UDP port");
+    c.count("--gc-return-port", n.gcReturnPort, 1, 65535, "nao: port of the return packets");
+    c.text("--gc-address", n.gcAddress, "IP", "nao: address to receive GameController packets on (default 0.0.0.0)",
+           ipv4Problem);
+    c.onlyWith("--backend", "sim", r.backend, {"--seed", "--lighting", "--miscalibration", "--model", "--pose", "--images"});
+    c.onlyWith("--backend", "nao", r.backend,
+               {"--lola-socket", "--camera-top", "--camera-bottom", "--camera-settings", "--team", "--player",
+                "--gc-port", "--gc-return-port", "--gc-address"});
+    c.rule([&r] {
+      const bool simValue = r.cameras == "on" || r.cameras == "off";
+      if (!r.cameras.empty() && simValue != (r.backend == "sim"))
+        return "--cameras: " + r.cameras + " is not a choice with --backend " + r.backend +
+               (r.backend == "sim" ? " (on or off)" : " (none or v4l2)");
+      if (r.backend == "sim" && r.seconds > 3600) return std::string("--seconds: at most 3600 with --backend sim");
+      return std::string();
+    });
+  }
+  {
+    CLI::App* bench = group("bench", "speed figures as JSON: sim, perception, calibration");
+    BenchSimOptions& s = o.benchSim;
+    Command& c = leaf(bench, "sim", "physics and rendering speed: real-time factors, render ms per camera", s.common);
+    seedJsonField(c);
+    c.text("--lighting", s.lighting, "SPEC", kLightingHelp + " (default " + s.lighting + ")");
+    c.inputFile("--model", s.model, "the robot's MJCF (default models/nao_v6.xml)");
+    c.number("--seconds", s.seconds, 1, 600, "s", "simulated seconds per physics run (camera runs: at most 10)");
+    c.count("--repeats", s.repeats, 1, 20, "runs per figure; the median is reported");
+
+    BenchPerceptionOptions& p = o.benchPerception;
+    Command& cp = leaf(bench, "perception", "the vision's median ms per stage on simulated images", p.common);
+    seedJsonField(cp);
+    cp.text("--lighting", p.lighting, "SPEC", kLightingHelp + ", or sweep (default " + p.lighting + ")");
+    cp.count("--frames", p.frames, 1, 10000, "simulated frames");
+    cp.count("--repeats", p.repeats, 1, 20, "passes over the frames; the median is reported");
+    cp.choice("--camera", p.camera, {"top", "bottom"}, "which camera");
+
+    BenchCalibrationOptions& k = o.benchCalibration;
+    Command& ck = leaf(bench, "calibration", "the calibration's parts: sample extraction per camera, each solver", k.common);
+    seedJsonField(ck);
+    k.sim.miscalibration = "random";
+    simOptions(ck, k.sim);
+    ck.count("--repeats", k.repeats, 1, 20, "rounds of 50 solves per solver");
+  }
+  {
+    PerceiveOptions& p = o.perceive;
+    Command& c = leaf(root, "perceive", "the vision on one PNG, JPEG or raw YUYV image: JSON and an annotated PNG", p.common);
+    c.positionalFile("IMAGE", p.image, "the image (PNG, JPEG, or raw YUYV .yuv/.yuyv/.raw)");
+    c.json();
+    c.field(kFieldFile);
+    c.choice("--camera", p.camera, {"top", "bottom"}, "which camera took the image");
+    c.numbers("--head", p.head, headElements(), "head angles for the camera matrix (default 0,0)");
+    c.size("--size", p.width, p.height, "size of a raw YUYV file (default: from its length)");
+    c.outputFile("--out", p.out, "write the annotated image (PNG)");
+    c.count("--scale", p.scale, 1, 8, "scale of the annotated image");
+  }
+  {
+    CLI::App* eval = group("eval", "accuracy against the simulator's truth over many random cases");
+    EvalPerceptionOptions& p = o.evalPerception;
+    Command& c = leaf(eval, "perception", "the vision against the truth: lines, circle, ball, per lighting", p.common);
+    seedJsonField(c);
+    c.count("--trials", p.trials, 1, 10000, "random scenes, each rendered by both cameras");
+    c.text("--lighting", p.lighting, "SPEC", "sweep (every preset of the sweep) or " + kLightingHelp + " (default sweep)");
+    c.number("--max-offset", p.maxOffset, 0, 10, "deg", "injected camera offsets, uniform in +-DEG, told to the model");
+    c.outputFolder("--images", p.images, "write annotated frames to DIR");
+    c.count("--images-every", p.imagesEvery, 1, 10000, "annotate every N-th scene")->needs("--images");
+    c.outputFolder("--failures", p.failures, "write frames with a miss or a false detection to DIR");
+
+    EvalCalibrationOptions& k = o.evalCalibration;
+    Command& ck = leaf(eval, "calibration", "random offsets, placements and lightings: errors against the injected truth", k.common);
+    seedJsonField(ck);
+    ck.count("--trials", k.trials, 1, 10000, "random cases");
+    ck.text("--lighting", k.lighting, "SPEC", "sweep (a random preset of the sweep per case) or " + kLightingHelp + " (default sweep)");
+    ck.number("--max-offset", k.maxOffset, 0, 10, "deg", "injected offsets, uniform in +-DEG per parameter");
+    ck.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "the solver scored (the other is compared)");
+
+    const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
+    EvalMotionOptions& w = o.evalWalk;
+    w.seconds = 60;
+    Command& cw = leaf(eval, "walk", "random walk commands every 2-5 s: falls, odometry error", w.common);
+    cw.seed();
+    cw.json();
+    cw.field("a motion test floor without lines");
+    cw.count("--trials", w.trials, 1, 1000, "trials");
+    cw.number("--seconds", w.seconds, 1, 600, "s", "seconds per trial");
+    cw.flag("--randomize", w.randomize, randomize);
+
+    EvalMotionOptions& t = o.evalWalkTo;
+    Command& ct = leaf(eval, "walk-to", "walk to targets 3 m away on odometry alone: final error against the truth", t.common);
+    ct.seed();
+    ct.json();
+    ct.count("--trials", t.trials, 1, 1000, "targets");
+    ct.flag("--randomize", t.randomize, randomize);
+
+    EvalMotionOptions& g = o.evalGetUp;
+    g.seconds = 15;
+    Command& cg = leaf(eval, "getup", "lying on the front and on the back, asked to stand: success within the limit", g.common);
+    cg.seed();
+    cg.json();
+    cg.count("--trials", g.trials, 1, 1000, "trials per side");
+    cg.number("--seconds", g.seconds, 1, 120, "s", "the time limit per trial");
+    cg.flag("--randomize", g.randomize, randomize);
+  }
+  {
+    WalkOptions& w = o.walk;
+    Command& c = leaf(root, "walk", "walk at a speed (or --to a target) in the simulator: speed, falls, odometry error", w.common);
+    c.seed();
+    c.json();
+    c.field("a motion test floor without lines");
+    c.flag("--randomize", w.randomize, "a 'foreign' robot: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0");
+    auto* vx = c.number("--vx", w.vx, -1000, 1000, "mm/s", "forward speed (the walk clips it to what it can)");
+    auto* vy = c.number("--vy", w.vy, -1000, 1000, "mm/s", "sideways speed, left positive");
+    auto* vt = c.number("--vtheta", w.vtheta, -1000, 1000, "deg/s", "turn rate, counter-clockwise positive");
+    auto* secs = c.number("--seconds", w.seconds, 0.1, 3600, "s", "how long to walk; then the robot stops");
+    c.numbers("--to", w.to, {{"X", "m", -10, 10}, {"Y", "m", -10, 10}, {"THETA_DEG", "deg", -180, 180}},
+              "instead: walk to this robot-relative target on odometry")
+        ->excludes(vx)
+        ->excludes(vy)
+        ->excludes(vt)
+        ->excludes(secs);
+  }
+  {
+    KickOptions& k = o.kick;
+    Command& c = leaf(root, "kick", "kicks in the simulator: ball travel, direction error, falls", k.common);
+    c.seed();
+    c.json();
+    c.count("--trials", k.trials, 1, 1000, "kicks");
+    c.flag("--randomize", k.randomize, "a 'foreign' robot per trial: masses +-5%, joint offsets +-1 deg, friction 0.6-1");
+  }
+  {
+    CLI::App* train = group("train", "train a model from simulated images: ball");
+    TrainBallOptions& t = o.trainBall;
+    Command& c = leaf(train, "ball", "the ball classifier (HOG + multi-layer perceptron) from simulated images", t.common);
+    seedJsonField(c);
+    c.count("--scenes", t.scenes, 5, 100000, "random scenes, each rendered by both cameras (every fifth held out)");
+    c.count("--lightings", t.lightings, 1, 5, "random lightings per scene and camera");
+    c.count("--hidden", t.hidden, 2, 1000, "neurons in the hidden layer");
+    c.count("--iterations", t.iterations, 1, 100000, "training epochs");
+    c.text("--samples", t.samples, "FILE",
+           "reuse the rendered samples in FILE if it exists, else render them and write them there",
+           [](const std::string& s) {
+             const std::string in = io::outputFileProblem(s);
+             std::error_code ec;
+             if (std::filesystem::is_regular_file(s, ec)) return std::string();
+             return in.empty() ? in : "'" + s + "': " + in;
+           });
+    c.outputFile("--out", t.out, "the model to write (default models/vision/ball_classifier.yml in the source tree)");
+  }
+  {
+    CalibrateOptions& k = o.calibrate;
+    Command& c = leaf(root, "calibrate", "the six camera offsets from the goal box (sim): true against estimated", k.common);
+    seedJsonField(c);
+    simOptions(c, k.sim);
+    c.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "least-squares solver");
+    c.flag("--compare", k.compare, "also solve the same samples with the other solver");
+    c.choice("--lines", k.lines, {"lsd", "vision"}, "image line segments from OpenCV's LSD or the vision pipeline first");
+    c.choice("--start", k.start, {"left", "right"}, "the side line the robot starts on");
+    c.numbers("--placement-error", k.placementError, {{"DX", "m", -0.5, 0.5}, {"DY", "m", -0.5, 0.5}, {"DTHETA", "deg", -30, 30}},
+              "where the robot really stands against the plan (default 0,0,0; at most 0.5 m away)");
+    c.rule([&k] {
+      if (k.placementError.size() == 3 && std::hypot(k.placementError[0], k.placementError[1]) > 0.5)
+        return std::string("--placement-error: more than 0.5 m from the plan");
+      return std::string();
+    });
+    c.outputFolder("--images", k.images, "write every view annotated and the before/after pictures (paper Fig. 2)");
+    auto* save = c.flag("--save", k.save, "store an accepted result for this robot's head id (refused above the residual threshold)");
+    c.outputFolder("--store", k.store, "calibration folder for --save (default config/calibration)")->needs(save);
+    c.rule([&k] {
+      if (!k.save || !k.store.empty()) return std::string();
+      const std::string store = dataPath("config/calibration");
+      const std::string problem = io::outputDirectoryProblem(store);
+      return problem.empty() ? problem : "--save: the default store " + store + ": " + problem;
+    });
+  }
+}
+
+}  // namespace nao::cli

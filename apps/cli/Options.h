@@ -1,0 +1,133 @@
+#pragma once
+// The values of every command's options, filled by the declarations in
+// apps/cli/Declarations.cpp (which hold their ranges, units and defaults).
+#include <string>
+#include <vector>
+
+#include "apps/cli/CommandLine.h"
+
+namespace nao::cli {
+
+// Simulator settings: lighting, injected miscalibration, the robot's MJCF.
+struct SimOptions {
+  std::string lighting = "default";
+  std::string miscalibration = "none";     // none, random, or "numbers": miscalibrationDeg
+  std::vector<double> miscalibrationDeg;  // body, top, bottom roll and pitch (deg)
+  std::string model;                    // "" = models/nao_v6.xml
+};
+
+struct RenderOptions {
+  CommonOptions common;
+  SimOptions sim;
+  std::string camera = "top", view = "camera", out;
+  std::vector<double> pose, head, ball;
+};
+
+struct NaoRunOptions {
+  std::string lolaSocket = "/tmp/robocup";
+  std::string cameraTop = "/dev/video-top", cameraBottom = "/dev/video-bottom", cameraSettings;
+  int team = 0, player = 1, gcPort = 3838, gcReturnPort = 3939;
+  std::string gcAddress = "0.0.0.0";
+};
+
+struct RunOptions {
+  CommonOptions common;
+  SimOptions sim;
+  NaoRunOptions nao;
+  std::string backend = "sim", cameras, images;
+  double seconds = 10;
+  std::vector<double> pose;
+};
+
+struct BenchSimOptions {
+  CommonOptions common;
+  std::string lighting = "default", model;
+  double seconds = 20;
+  int repeats = 3;
+};
+
+struct BenchPerceptionOptions {
+  CommonOptions common;
+  std::string lighting = "default", camera = "top";
+  int frames = 300, repeats = 3;
+};
+
+struct BenchCalibrationOptions {
+  CommonOptions common;
+  SimOptions sim;
+  int repeats = 3;
+};
+
+struct PerceiveOptions {
+  CommonOptions common;
+  std::string image, camera = "top", out;
+  std::vector<double> head;
+  int width = 0, height = 0;  // of a raw YUYV file; 0: from its length
+  int scale = 1;
+};
+
+struct EvalPerceptionOptions {
+  CommonOptions common;
+  std::string lighting = "sweep", images, failures;
+  int trials = 300, imagesEvery = 25;
+  double maxOffset = 1;
+};
+
+struct EvalCalibrationOptions {
+  CommonOptions common;
+  std::string lighting = "sweep", solver = "gauss-newton";
+  int trials = 100;
+  double maxOffset = 3;
+};
+
+struct EvalMotionOptions {  // eval walk, walk-to, getup
+  CommonOptions common;
+  int trials = 20;
+  double seconds = 60;
+  bool randomize = false;
+};
+
+struct WalkOptions {
+  CommonOptions common;
+  double vx = 0, vy = 0, vtheta = 0, seconds = 10;
+  std::vector<double> to;
+  bool randomize = false;
+};
+
+struct KickOptions {
+  CommonOptions common;
+  int trials = 20;
+  bool randomize = false;
+};
+
+struct TrainBallOptions {
+  CommonOptions common;
+  int scenes = 1500, lightings = 2, hidden = 16, iterations = 200;
+  std::string samples, out;
+};
+
+struct CalibrateOptions {
+  CommonOptions common;
+  SimOptions sim;
+  std::string solver = "gauss-newton", lines = "lsd", start = "right", images, store;
+  std::vector<double> placementError;
+  bool compare = false, save = false;
+};
+
+struct Options {
+  RenderOptions render;
+  RunOptions run;
+  BenchSimOptions benchSim;
+  BenchPerceptionOptions benchPerception;
+  BenchCalibrationOptions benchCalibration;
+  PerceiveOptions perceive;
+  EvalPerceptionOptions evalPerception;
+  EvalCalibrationOptions evalCalibration;
+  EvalMotionOptions evalWalk, evalWalkTo, evalGetUp;
+  WalkOptions walk;
+  KickOptions kick;
+  TrainBallOptions trainBall;
+  CalibrateOptions calibrate;
+};
+
+}  // namespace nao::cli
