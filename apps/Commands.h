@@ -22,5 +22,6 @@ int walkCommand(const WalkOptions& o);
 int kickCommand(const KickOptions& o);
 int trainBallCommand(const TrainBallOptions& o);
 int calibrateCommand(const CalibrateOptions& o);
+int modulesCommand(const ModulesOptions& o);
 
 }  // namespace nao::cli

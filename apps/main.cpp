@@ -33,6 +33,7 @@ void bind(CommandLine& cl) {
   to("kick", nao::cli::kickCommand, o.kick);
   to("train ball", nao::cli::trainBallCommand, o.trainBall);
   to("calibrate", nao::cli::calibrateCommand, o.calibrate);
+  to("modules", nao::cli::modulesCommand, o.modules);
 }
 
 }  // namespace

@@ -179,6 +179,28 @@ TEST(Cli, MujocoWarningKeepsJsonOnStdout) {
   EXPECT_FALSE(fs::exists(dir / "MUJOCO_LOG.TXT"));
 }
 
+// `modules` lists the registry: every module config/modules.json uses, with its declarations.
+TEST(Cli, ModulesListsTheRegistry) {
+  const std::string path = std::string(::testing::TempDir()) + "modules.json";
+  const Result r = run("modules --json " + path);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(slurpFile(path));
+  bool motion = false;
+  for (const auto& m : j.at("modules")) {
+    EXPECT_TRUE(m.at("used").get<bool>()) << m.dump();
+    if (m.at("name") == "MotionEngine") {
+      motion = true;
+      EXPECT_EQ(m.at("cadence"), "motion");
+      EXPECT_NE(m.at("provides").dump().find("JointRequest"), std::string::npos);
+      EXPECT_NE(m.at("requires").dump().find("FallState"), std::string::npos);
+    }
+  }
+  EXPECT_TRUE(motion);
+  const Result dot = run("modules --dot");
+  EXPECT_EQ(dot.code, 0);
+  EXPECT_NE(dot.out.find("\"FallDetector\" -> \"MotionEngine\""), std::string::npos) << dot.out;
+}
+
 TEST(Cli, HelpExitsZero) {
   const Result r = run("render --help");
   EXPECT_EQ(r.code, 0);

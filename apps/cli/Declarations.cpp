@@ -246,6 +246,15 @@ void CommandLine::declare() {
     c.outputFile("--out", t.out, "the model to write (default models/vision/ball_classifier.yml in the source tree)");
   }
   {
+    ModulesOptions& m = o.modules;
+    Command& c = leaf(root, "modules", "every module of the robot program: cadence, requires, provides (or a Graphviz graph)", m.common);
+    c.json();
+    c.flag("--dot", m.dot, "print the module graph as Graphviz (providers as config/modules.json chooses them)");
+    c.rule([&m] {
+      return m.dot && m.common.json == "-" ? std::string("--dot: the graph takes stdout; give --json a file") : std::string();
+    });
+  }
+  {
     CalibrateOptions& k = o.calibrate;
     Command& c = leaf(root, "calibrate", "the six camera offsets from the goal box (sim): true against estimated", k.common);
     seedJsonField(c);

@@ -114,6 +114,11 @@ struct CalibrateOptions {
   bool compare = false, save = false;
 };
 
+struct ModulesOptions {
+  CommonOptions common;
+  bool dot = false;
+};
+
 struct Options {
   RenderOptions render;
   RunOptions run;
@@ -128,6 +133,7 @@ struct Options {
   KickOptions kick;
   TrainBallOptions trainBall;
   CalibrateOptions calibrate;
+  ModulesOptions modules;
 };
 
 }  // namespace nao::cli
