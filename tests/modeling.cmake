@@ -1,0 +1,3 @@
+# Modeling (perception/modeling/): self-localization and ball model against synthetic truth.
+nao_add_test(modeling_localization_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/modeling_localization_test.cpp LIBS nao_modeling TIMEOUT 300)
+nao_add_test(modeling_ball_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/modeling_ball_test.cpp LIBS nao_modeling TIMEOUT 300)
