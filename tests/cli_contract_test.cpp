@@ -228,6 +228,63 @@ TEST(CliContract, EveryInputFileRefusesBadContents) {
   EXPECT_GT(tally.cases, 40);
 }
 
+// A new user's sweep, written without looking at the declarations: the same absurd inputs to
+// every command. Each must be refused (exit 2, one line naming the flag) whether the command
+// takes the option (then the value is out of bounds) or not (then the option is unknown to it):
+// never accepted, never ignored.
+TEST(CliContract, AbsurdInputsToEveryCommand) {
+  const Sandbox box("absurd");
+  const std::vector<std::pair<std::string, std::string>> absurd = {
+      {"--seed", "-1"},
+      {"--seed", "18446744073709551615"},
+      {"--seed", "1.5"},
+      {"--trials", "99999999999"},
+      {"--trials", "0"},
+      {"--trials", "-3"},
+      {"--seconds", "1e30"},
+      {"--seconds", "1e-300"},
+      {"--seconds", "-5"},
+      {"--seconds", "nan"},
+      {"--repeats", "100000"},
+      {"--frames", "0"},
+      {"--json", "''"},
+      {"--json", box.out("missing/out.json")},
+      {"--json", box.dir.string()},
+      {"--field", box.dir.string()},
+      {"--field", box.in("file.txt") + "x"},
+      {"--pose", "1e30,0,0"},
+      {"--pose", "0,0,1e30"},
+      {"--pose", "9,0,0"},
+      {"--head", "1e30,0"},
+      {"--head", "0,-90"},
+      {"--ball", "100,0"},
+      {"--camera", "left"},
+      {"--lighting", "intensity=1e30"},
+      {"--miscalibration", "45,0,0,0,0,0"},
+      {"--max-offset", "90"},
+      {"--vx", "1e9"},
+      {"--scale", "1000"},
+      {"--images", box.in("file.txt")},
+      {"--out", box.dir.string()},
+      {"--backend", "robot"},
+      {"--team", "999"},
+      {"--gc-port", "70000"},
+      {"--randomize=yes", ""},
+      {"--solver", "newton"},
+  };
+  CommandLine cl;
+  Tally tally;
+  int i = 0;
+  for (const Command* c : cl.commands())
+    for (const auto& [flag, value] : absurd) {
+      if (quick() && ++i % 6 != 0) continue;  // the parser itself is fuzzed under the sanitizers
+      const std::string args = c->path() + requiredArgs(*c, box, flag) + " " + flag + (value.empty() ? "" : " " + value);
+      expectRefused(args, flag.substr(0, flag.find('=')), box, "absurd", tally);
+    }
+  std::printf("cli contract: %d absurd command lines over %zu commands, %d not refused as promised\n", tally.cases,
+              cl.commands().size(), tally.failures);
+}
+
 TEST(CliContract, HelpListsEveryOptionWithUnitsAndRanges) {
   CommandLine cl;
   for (const Command* c : cl.commands()) {
