@@ -1,10 +1,40 @@
 #include "controllers/RobotProgram.h"
 
+#include <set>
 
+#include "representations/infrastructure/CurrentImage.h"
+#include "representations/infrastructure/FrameHistory.h"
 #include "robot/ModuleRegistry.h"
 #include "robot/Paths.h"
 
 namespace nao {
+
+namespace {
+
+template <class... T>
+struct TypeList {};
+
+// What crosses between the cadences (docs/architecture.md). Motion to cognition: the state
+// cognition interprets its images with; the calibration the app sets. Cognition to motion: the
+// behaviour's requests.
+using MotionToCognition = TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration>;
+using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest>;
+
+template <class T>
+void copyOne(const Blackboard& from, Blackboard& to) {
+  to.write<T>() = from.read<T>();
+}
+
+// The crossings of `list` whose type the source side has (provides, or holds as an input).
+template <class... T>
+std::vector<std::pair<RepresentationType, void (*)(const Blackboard&, Blackboard&)>> crossings(
+    TypeList<T...>, const std::set<std::type_index>& available) {
+  std::vector<std::pair<RepresentationType, void (*)(const Blackboard&, Blackboard&)>> out;
+  ((available.count(typeid(T)) ? void(out.emplace_back(RepresentationType::of<T>(), &copyOne<T>)) : void()), ...);
+  return out;
+}
+
+}  // namespace
 
 std::string RobotProgramConfig::defaultConfigDir() { return dataPath("config"); }
 
@@ -18,22 +48,59 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   context.headId = config.headId;
   if (config.motion) context.params["MotionEngine"] = *config.motion;
 
-  blackboard_.write<CameraCalibration>() = config.calibration;
-  blackboard_.write<MotionRequest>() = MotionRequest{};  // stand
-  blackboard_.write<HeadMotionRequest>() = HeadMotionRequest{};
-  // What the cycle writes (backend) and what the app sets (calibration) are inputs; the
-  // behaviour's requests too, as long as no module provides them (scenarios and tests write them).
-  pipeline_.inputs<SensorFrame, CameraImages, CameraCalibration>();
-  if (!providers.count(typeName<MotionRequest>())) pipeline_.inputs<MotionRequest>();
-  if (!providers.count(typeName<HeadMotionRequest>())) pipeline_.inputs<HeadMotionRequest>();
-  for (const std::string& name : chosenModules(providers)) pipeline_.add(createModule(name, context));
-  pipeline_.sort();
+  motionBoard_.write<CameraCalibration>() = config.calibration;
+  motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand
+  motionBoard_.write<HeadMotionRequest>() = HeadMotionRequest{};
+  // Motion's inputs: what the cycle writes (backend), what the app sets (calibration), and the
+  // behaviour's requests: copied from cognition when a cognition module provides them, else
+  // written by a scenario, a test or the app.
+  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest>();
+  std::set<std::type_index> motionHas = {typeid(SensorFrame), typeid(CameraImages), typeid(CameraCalibration),
+                                         typeid(MotionRequest), typeid(HeadMotionRequest)};
+  std::set<std::type_index> cognitionHas;
+  for (const std::string& name : chosenModules(providers)) {
+    std::unique_ptr<ModuleBase> m = createModule(name, context);
+    auto& has = m->cadence() == Cadence::Motion ? motionHas : cognitionHas;
+    for (const auto& t : m->provided()) has.insert(t.type);
+    (m->cadence() == Cadence::Motion ? motion_ : cognition_).add(std::move(m));
+  }
+  motion_.sort();
+
+  for (const auto& [type, copy] : crossings(MotionToCognition{}, motionHas)) {
+    toCognition_.push_back({type, copy});
+    cognition_.input(type);
+  }
+  cognition_.inputs<CurrentImage>();
+  for (const auto& [type, copy] : crossings(CognitionToMotion{}, cognitionHas)) toMotion_.push_back({type, copy});
+  cognition_.sort();
+}
+
+std::vector<std::string> RobotProgram::moduleOrder() const {
+  std::vector<std::string> names = motion_.order();
+  for (const auto& n : cognition_.order()) names.push_back(n);
+  return names;
+}
+
+void RobotProgram::runCognition(const CameraImage& image) {
+  const int cam = static_cast<int>(image.camera);
+  // An image older than the last of its camera (a backend's clock gone back, a replay out of
+  // order) would pair with the wrong joints: skipped.
+  if (cognitionRuns_[cam] > 0 && !(image.timestamp >= lastImageTime_[cam])) {
+    ++skippedImages_;
+    return;
+  }
+  lastImageTime_[cam] = image.timestamp;
+  for (const auto& c : toCognition_) c.copy(motionBoard_, cognitionBoard_);
+  cognitionBoard_.write<CurrentImage>().image = image;
+  cognition_.update(cognitionBoard_);
+  for (const auto& c : toMotion_) c.copy(cognitionBoard_, motionBoard_);
+  ++cognitionRuns_[cam];
 }
 
 bool RobotProgram::cycle(Backend& backend) {
-  auto& frame = blackboard_.write<SensorFrame>();
+  auto& frame = motionBoard_.write<SensorFrame>();
   if (!backend.waitForSensors(frame)) return false;
-  auto& images = blackboard_.write<CameraImages>();
+  auto& images = motionBoard_.write<CameraImages>();
   for (CameraId cam : {CameraId::Top, CameraId::Bottom}) {
     CameraImage img;
     auto& slot = images.latest[static_cast<int>(cam)];
@@ -42,8 +109,12 @@ bool RobotProgram::cycle(Backend& backend) {
     else
       slot.reset();
   }
-  pipeline_.update(blackboard_);
-  backend.sendRequest(blackboard_.read<JointRequest>(), blackboard_.write<LedRequest>());
+  motion_.update(motionBoard_);
+  // The answer goes out before cognition runs: an image never delays it.
+  backend.sendRequest(motionBoard_.read<JointRequest>(), motionBoard_.write<LedRequest>());
+  if (!cognition_.modules().empty())
+    for (const auto& img : images.latest)
+      if (img) runCognition(*img);
   return true;
 }
 

@@ -3,6 +3,7 @@
 // against any Backend. The same code runs in the simulator and on the NAO. Which module
 // provides what comes from config/modules.json, each module's parameters from
 // config/parameters/<module>.json (docs/architecture.md).
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -40,22 +41,47 @@ struct RobotProgramConfig {
   static std::string defaultConfigDir();
 };
 
+// Two cadences (docs/architecture.md): the motion pipeline runs every cycle; the cognition
+// pipeline runs once per camera image, after that cycle's motion, each on its own blackboard.
+// What crosses between them is declared (kMotionToCognition, kCognitionToMotion) and copied at
+// the cadence boundary: cognition sees motion's state as of the cycle the image arrived in, and
+// motion sees cognition's requests from the next cycle on, as it would from another thread.
+// In this lock-step form the run is deterministic.
 class RobotProgram {
  public:
   // Throws nao::Error for a bad config/modules.json or parameter file (file and key named).
   explicit RobotProgram(const RobotProgramConfig& config = {});
-  // One cycle: sensors and images in, modules, joint request out. False when the backend
-  // stopped (its stopReason says why).
+  // One cycle: sensors and images in, motion, cognition per image, joint request out. False
+  // when the backend stopped (its stopReason says why).
   bool cycle(Backend& backend);
 
-  const Blackboard& blackboard() const { return blackboard_; }
-  Blackboard& blackboard() { return blackboard_; }
-  std::vector<std::string> moduleOrder() const { return pipeline_.order(); }
-  const Pipeline& pipeline() const { return pipeline_; }
+  // The motion cadence's board (sensors, motion state, and the requests a scenario sets while
+  // no behaviour module provides them), and the cognition cadence's.
+  const Blackboard& blackboard() const { return motionBoard_; }
+  Blackboard& blackboard() { return motionBoard_; }
+  const Blackboard& cognitionBoard() const { return cognitionBoard_; }
+  // Motion modules in order, then cognition modules in order.
+  std::vector<std::string> moduleOrder() const;
+  const Pipeline& pipeline() const { return motion_; }
+  const Pipeline& cognitionPipeline() const { return cognition_; }
+  // Cognition runs so far, per camera, and images skipped for a timestamp older than the last.
+  const std::array<long, kNumCameras>& cognitionRuns() const { return cognitionRuns_; }
+  long skippedImages() const { return skippedImages_; }
 
  private:
-  Blackboard blackboard_;
-  Pipeline pipeline_;
+  using Copy = void (*)(const Blackboard& from, Blackboard& to);
+  struct Crossing {
+    RepresentationType type;
+    Copy copy;
+  };
+  void runCognition(const CameraImage& image);
+
+  Blackboard motionBoard_, cognitionBoard_;
+  Pipeline motion_, cognition_;
+  std::vector<Crossing> toCognition_, toMotion_;  // the declared exchange, as far as provided
+  std::array<long, kNumCameras> cognitionRuns_{};
+  std::array<double, kNumCameras> lastImageTime_{};
+  long skippedImages_ = 0;
 };
 
 }  // namespace nao

@@ -63,7 +63,8 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"CameraMatrixProvider", "FallDetector", "HeadControl", "MotionEngine", "TorsoMatrixProvider"}));
+  EXPECT_EQ(chosenModules(p), (Names{"CameraMatrixProvider", "ExposureCameraMatrixProvider", "FallDetector",
+                                     "FrameHistoryProvider", "HeadControl", "MotionEngine", "TorsoMatrixProvider"}));
 }
 
 std::string providersError(const std::string& text) {
@@ -108,8 +109,9 @@ TEST(ModuleRegistry, BadModulesJsonIsOneLineNamingTheKey) {
 
 TEST(RobotProgram, OrderFollowsTheDeclarations) {
   RobotProgram program;
-  EXPECT_EQ(program.moduleOrder(),
-            (Names{"TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "HeadControl", "MotionEngine"}));
+  // Motion in dependency order, then cognition.
+  EXPECT_EQ(program.moduleOrder(), (Names{"TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
+                                          "HeadControl", "MotionEngine", "ExposureCameraMatrixProvider"}));
 }
 
 TEST(RobotProgram, AProviderSwappedByConfiguration) {

@@ -1,0 +1,45 @@
+#pragma once
+// Motion to cognition: the last half second of joint angles and torso poses, one entry per
+// motion cycle (FrameHistoryProvider), so that cognition can compute the camera matrix at an
+// image's exposure time (ExposureCameraMatrixProvider) rather than at the time it runs.
+#include <deque>
+
+#include <Eigen/Geometry>
+
+#include "robot/JointIds.h"
+
+namespace nao {
+
+struct FrameHistory {
+  struct Entry {
+    double time = 0;  // s, backend clock (SensorFrame::time)
+    JointArray joints{};
+    Eigen::Isometry3d robotToTorso = Eigen::Isometry3d::Identity();
+  };
+  std::deque<Entry> entries;  // oldest first
+
+  // Joints and torso at time t: interpolated between the two entries around it (joints
+  // linearly, the torso's rotation by slerp); the nearest entry outside the history's span.
+  // False when the history is empty.
+  bool at(double t, JointArray& joints, Eigen::Isometry3d& robotToTorso) const {
+    if (entries.empty()) return false;
+    std::size_t i = 1;
+    while (i < entries.size() && entries[i].time < t) ++i;
+    if (i == entries.size() || t <= entries.front().time) {
+      const Entry& e = t <= entries.front().time ? entries.front() : entries.back();
+      joints = e.joints;
+      robotToTorso = e.robotToTorso;
+      return true;
+    }
+    const Entry &a = entries[i - 1], &b = entries[i];
+    const double span = b.time - a.time;
+    const double s = span > 0 ? (t - a.time) / span : 1.0;
+    for (int j = 0; j < NumJoints; ++j) joints[j] = a.joints[j] + s * (b.joints[j] - a.joints[j]);
+    const Eigen::Quaterniond qa(a.robotToTorso.linear()), qb(b.robotToTorso.linear());
+    robotToTorso.linear() = qa.slerp(s, qb).toRotationMatrix();
+    robotToTorso.translation() = a.robotToTorso.translation() + s * (b.robotToTorso.translation() - a.robotToTorso.translation());
+    return true;
+  }
+};
+
+}  // namespace nao

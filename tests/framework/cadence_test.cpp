@@ -1,0 +1,189 @@
+// The two cadences of RobotProgram: motion every cycle, cognition once per camera image with the
+// declared exchange between them; and the two modules that carry time across it
+// (FrameHistoryProvider, ExposureCameraMatrixProvider).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "controllers/RobotProgram.h"
+#include "controllers/Walk.h"
+#include "controllers/modules/ExposureCameraMatrixProvider.h"
+#include "controllers/modules/FrameHistoryProvider.h"
+#include "representations/infrastructure/CurrentImage.h"
+#include "robot/ForwardKinematics.h"
+#include "robot/ModuleRegistry.h"
+#include "tests/support/ModuleHarness.h"
+
+namespace nao {
+
+// A behaviour for the test: each run asks motion to walk at (runs x 10 mm/s) and records the
+// odometry and the image it saw.
+class CountingBehavior : public Module<CountingBehavior, Requires<CurrentImage, Odometry>,
+                                       Provides<MotionRequest, HeadMotionRequest>, Cadence::Cognition> {
+ public:
+  explicit CountingBehavior(const ModuleContext& = {}) {}
+  static inline int runs = 0;
+  static inline double lastImageTime = -1;
+
+ private:
+  void update() override {
+    ++runs;
+    lastImageTime = in<CurrentImage>().image.timestamp;
+    MotionRequest& r = out<MotionRequest>();
+    r.motion = MotionType::Walk;
+    r.walkSpeed = Pose2(0.01 * runs, 0, 0);
+    out<HeadMotionRequest>() = HeadMotionRequest{};
+  }
+};
+NAO_REGISTER_MODULE(CountingBehavior);
+
+namespace {
+
+using testing::ModuleHarness;
+
+constexpr double kYawRate = 2.0;  // rad/s: the head turns while the images are taken
+
+JointArray postureAt(double t) {
+  JointArray j = Walk().standPosture();
+  j[HeadYaw] = -1.0 + kYawRate * t;
+  j[HeadPitch] = 0.1;
+  return j;
+}
+
+// A backend whose head turns at kYawRate; the top camera delivers an image every third cycle,
+// exposed 5 ms before the cycle that delivers it; one image comes with a stale timestamp.
+class TurningHeadBackend : public Backend {
+ public:
+  std::string name() const override { return "test"; }
+  RobotInfo robotInfo() const override { return {}; }
+  bool waitForSensors(SensorFrame& frame) override {
+    if (cycle_ >= cycles) return false;
+    frame = SensorFrame{};
+    frame.time = cycle_ * kCycleTime;
+    frame.joints.position = postureAt(frame.time);
+    frame.inertial.angle = {0.01, 0.05};
+    ++cycle_;
+    return true;
+  }
+  bool takeImage(CameraId camera, CameraImage& image) override {
+    const int c = cycle_ - 1;
+    if (camera != CameraId::Top || c == 0 || c % 3 != 0) return false;
+    image.camera = camera;
+    image.width = 64;
+    image.height = 48;
+    image.yuyv.assign(64 * 48 * 2, 128);
+    image.timestamp = c * kCycleTime - 0.005;
+    if (c == staleAt) image.timestamp = 0.001;  // older than the last
+    ++delivered;
+    return true;
+  }
+  void sendRequest(const JointRequest&, const LedRequest&) override { ++answers; }
+
+  int cycles = 60, staleAt = -1, delivered = 0, answers = 0;
+
+ private:
+  int cycle_ = 0;
+};
+
+RobotProgramConfig withBehavior() {
+  RobotProgramConfig c;
+  c.providers = {{"MotionRequest", "CountingBehavior"}, {"HeadMotionRequest", "CountingBehavior"}};
+  return c;
+}
+
+TEST(Cadences, CognitionRunsOncePerImageAndItsRequestsReachMotion) {
+  CountingBehavior::runs = 0;
+  RobotProgram program(withBehavior());
+  TurningHeadBackend backend;
+  while (program.cycle(backend)) {
+  }
+  EXPECT_EQ(backend.answers, backend.cycles);
+  EXPECT_EQ(backend.delivered, 19);  // cycles 3, 6, ..., 57
+  EXPECT_EQ(CountingBehavior::runs, backend.delivered);
+  EXPECT_EQ(program.cognitionRuns()[static_cast<int>(CameraId::Top)], backend.delivered);
+  EXPECT_EQ(program.cognitionRuns()[static_cast<int>(CameraId::Bottom)], 0);
+  // Cognition's last request crossed to motion.
+  EXPECT_NEAR(program.blackboard().read<MotionRequest>().walkSpeed.x, 0.01 * backend.delivered, 1e-12);
+  // The cognition modules are in their own pipeline, listed after the motion modules.
+  const auto order = program.moduleOrder();
+  const auto at = [&](const std::string& n) { return std::find(order.begin(), order.end(), n) - order.begin(); };
+  EXPECT_GT(at("CountingBehavior"), at("MotionEngine"));
+  EXPECT_EQ(program.cognitionPipeline().order().size(), 2u);  // with ExposureCameraMatrixProvider
+  EXPECT_EQ(program.pipeline().order().size(), order.size() - 2);
+}
+
+TEST(Cadences, WithoutImagesCognitionNeverRuns) {
+  CountingBehavior::runs = 0;
+  RobotProgram program(withBehavior());
+  TurningHeadBackend backend;
+  backend.cycles = 2;  // the first image would come at cycle 3
+  while (program.cycle(backend)) {
+  }
+  EXPECT_EQ(CountingBehavior::runs, 0);
+  // Until cognition speaks, motion keeps the initial request: stand.
+  EXPECT_EQ(program.blackboard().read<MotionRequest>().motion, MotionType::Stand);
+}
+
+TEST(Cadences, AnImageOlderThanTheLastIsSkipped) {
+  CountingBehavior::runs = 0;
+  RobotProgram program(withBehavior());
+  TurningHeadBackend backend;
+  backend.staleAt = 30;
+  while (program.cycle(backend)) {
+  }
+  EXPECT_EQ(program.skippedImages(), 1);
+  EXPECT_EQ(CountingBehavior::runs, backend.delivered - 1);
+}
+
+// The camera matrix of an image is that of the posture at its exposure time, not at the cycle's:
+// checked against the camera model for the posture interpolated by hand.
+TEST(Cadences, CameraMatrixAtExposureTime) {
+  RobotProgram program;
+  TurningHeadBackend backend;
+  backend.cycles = 31;
+  while (program.cycle(backend)) {
+  }
+  const auto& m = program.cognitionBoard().read<ImageCameraMatrix>();
+  ASSERT_TRUE(m.valid);
+  const double t = 30 * kCycleTime - 0.005;
+  EXPECT_DOUBLE_EQ(m.timestamp, t);
+  const JointArray joints = postureAt(t);  // the yaw is linear in time: interpolation is exact
+  const CameraMatrix want = computeCameraMatrix(joints, robotToTorso(joints, 0.01, 0.05), CameraId::Top,
+                                                CameraCalibration{}, CameraIntrinsics::fromFovY(64, 48));
+  EXPECT_LT((m.matrix.pose.matrix() - want.pose.matrix()).norm(), 1e-9);
+  // The matrix at the cycle's own time is measurably different (the head turned 0.6 deg since).
+  const JointArray late = postureAt(30 * kCycleTime);
+  const CameraMatrix atCycle = computeCameraMatrix(late, robotToTorso(late, 0.01, 0.05), CameraId::Top,
+                                                   CameraCalibration{}, CameraIntrinsics::fromFovY(64, 48));
+  EXPECT_GT((m.matrix.pose.linear() - atCycle.pose.linear()).norm(), 5e-3);
+}
+
+TEST(FrameHistoryProvider, KeepsHalfASecondAndRestartsWhenTimeGoesBack) {
+  ModuleHarness h = ModuleHarness::make<modules::FrameHistoryProvider>();
+  h.fix(TorsoState{});
+  SensorFrame f;
+  for (int i = 0; i < 100; ++i) {
+    f.time = i * kCycleTime;
+    h.fix(f).run();
+  }
+  const auto& e = h.get<FrameHistory>().entries;
+  EXPECT_LE(e.back().time - e.front().time, modules::FrameHistoryProvider::kSpan + 1e-9);
+  EXPECT_GE(e.back().time - e.front().time, modules::FrameHistoryProvider::kSpan - kCycleTime - 1e-9);
+  f.time = 0.1;  // a restarted clock
+  h.fix(f).run();
+  EXPECT_EQ(h.get<FrameHistory>().entries.size(), 1u);
+  f.time = std::nan("");
+  h.fix(f).run();
+  EXPECT_EQ(h.get<FrameHistory>().entries.size(), 1u);
+}
+
+TEST(ExposureCameraMatrixProvider, InvalidWithoutHistoryOrImage) {
+  ModuleHarness h = ModuleHarness::make<modules::ExposureCameraMatrixProvider>();
+  CurrentImage img;
+  h.fix(img).fix(FrameHistory{}).fix(CameraCalibration{}).run();
+  EXPECT_FALSE(h.get<ImageCameraMatrix>().valid);
+}
+
+}  // namespace
+}  // namespace nao
