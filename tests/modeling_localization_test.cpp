@@ -61,12 +61,15 @@ class PerceptGenerator {
   double falseLineRate = 0.1;   // a false line in this share of images
   double falsePointRate = 0.05; // a false intersection / false penalty mark in this share
 
+  // For each line of the last perceive(): the index of the field line it shows.
+  std::vector<int> modelLineOf;
+
   FieldPercepts perceive(const Pose2& truth, const View& view, const Noise& noise, double time) {
     FieldPercepts out;
     out.time = time;
     out.uncertainty.sigmaBase = noise.base;
     out.uncertainty.sigmaPerMetre = noise.perMetre;
-    std::vector<int> modelLineOf;
+    modelLineOf.clear();
     auto jitter = [&](const Vec2& p) {
       std::normal_distribution<double> n(0, noise.sigma(p));
       return Vec2(p.x() + n(rng_), p.y() + n(rng_));
@@ -619,10 +622,29 @@ TEST(SelfLocator, FeatureCandidatesMatchTheTruth) {
       {"circle + halfway line", {-1.8, 0.4, 0.1}, {0, 28 * kDeg, 0.3, 3.0}},
       {"penalty mark + penalty-area line", {-1.5, -0.3, kPi - 0.1}, {0, 28 * kDeg, 0.3, 3.0}},
       {"goal-box corner (penalty mark hidden)", {-2.6, 0.6, kPi - 0.3}, {0, 28 * kDeg, 0.3, 2.5}},
+      {"goal box side view (lines only)", {-4.0, -2.7, 95 * kDeg}, {0, 28 * kDeg, 0.3, 2.5}},
   };
   for (const auto& c : cases) {
     FieldPercepts p = gen.perceive(c.truth, c.view, exact, 0);
     if (std::string(c.what).find("corner") != std::string::npos) {
+      p.lines.penaltyMark.reset();
+      p.lines.circle.found = false;
+    }
+    if (std::string(c.what).find("side view") != std::string::npos) {
+      // The goal box seen from the side, as the vision reports it; nothing else but lines.
+      auto indexOf = [&](const std::string& name) {
+        for (std::size_t k = 0; k < gen.modelLineOf.size(); ++k)
+          if (field.lines[gen.modelLineOf[k]].name == name) return static_cast<int>(k);
+        return -1;
+      };
+      p.lines.goalBoxSide.found = true;
+      p.lines.goalBoxSide.shortLine = indexOf("own_goal_box_right");
+      p.lines.goalBoxSide.longLine1 = indexOf("own_goal_line");
+      p.lines.goalBoxSide.longLine2 = indexOf("own_goal_box_front");
+      ASSERT_GE(p.lines.goalBoxSide.shortLine, 0);
+      ASSERT_GE(p.lines.goalBoxSide.longLine1, 0);
+      ASSERT_GE(p.lines.goalBoxSide.longLine2, 0);
+      p.lines.intersections.clear();
       p.lines.penaltyMark.reset();
       p.lines.circle.found = false;
     }

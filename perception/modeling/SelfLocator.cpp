@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -21,7 +22,7 @@ struct Element {
   FieldIntersection::Type type = FieldIntersection::Type::L;
   Vec2 p = Vec2::Zero();   // point, or the line's centre
   Vec2 u = Vec2::UnitX();  // line direction (unit)
-  double length = 0;       // line length
+  double length = 0;       // line length (its ends: p -+ u length / 2)
   double sigmaP = 0.05;    // m
   double sigmaA = 0.05;    // rad (lines)
   int lineIndex = -1;      // index into LinesPercept::lines (lines)
@@ -153,9 +154,9 @@ class Associator {
           a0 = b;
         }
         const Vec2 n(-v.y(), v.x());
-        const double s = v.dot(e.p - a0);
-        if (s < -p_.lineEndMargin || s > len + p_.lineEndMargin) return false;
-        if (e.length > len + 2 * p_.lineEndMargin) return false;
+        // Both ends of the measured segment lie along the model line (with the margin).
+        const double s = v.dot(e.p - a0), half = 0.5 * e.length * std::abs(v.dot(e.u));
+        if (s - half < -p_.lineEndMargin || s + half > len + p_.lineEndMargin) return false;
         r = Vec2(n.dot(e.p - a0), normalizeAngle(std::atan2(e.u.y(), e.u.x()) - std::atan2(v.y(), v.x())));
         return true;
       }
@@ -527,6 +528,26 @@ std::vector<Pose2> SelfLocator::candidatesFrom(const FieldPercepts& percepts, co
     }
   }
 
+  // The goal box seen from the side: its short line is one of the goal boxes' side lines, in
+  // either direction; the long lines beside it decide which (verification, unambiguous only).
+  std::vector<Pose2> boxRaw;
+  const auto& gb = percepts.lines.goalBoxSide;
+  const int nLines = static_cast<int>(percepts.lines.lines.size());
+  if (gb.found && gb.shortLine >= 0 && gb.shortLine < nLines) {
+    const auto& l = percepts.lines.lines[gb.shortLine];
+    if (finite2(l.from) && finite2(l.to) && (l.to - l.from).norm() > 0.2) {
+      const Vec2 c = 0.5 * (l.from + l.to);
+      const double a = angleOf(l.to - l.from);
+      for (const auto& m : field_.lines) {
+        if (m.name.find("goal_box_left") == std::string::npos && m.name.find("goal_box_right") == std::string::npos)
+          continue;
+        const Vec2 mc = 0.5 * (m.from + m.to);
+        const double ma = angleOf(m.to - m.from);
+        for (double flip : {0.0, kPi}) boxRaw.push_back(poseFrom(ma + flip - a, mc, c));
+      }
+    }
+  }
+
   auto verified = [&](const Pose2& p) { return supports(toVec(p), els); };
   auto same = [](const Pose2& a, const Pose2& b) {
     auto close = [](const Pose2& p, const Pose2& q) {
@@ -547,6 +568,10 @@ std::vector<Pose2> SelfLocator::candidatesFrom(const FieldPercepts& percepts, co
   for (const auto& p : cornerRaw)
     if (verified(p)) addUnique(corners, p);
   if (corners.size() == 1) addUnique(out, corners.front());
+  std::vector<Pose2> boxes;
+  for (const auto& p : boxRaw)
+    if (verified(p)) addUnique(boxes, p);
+  if (boxes.size() == 1) addUnique(out, boxes.front());
   return out;
 }
 
