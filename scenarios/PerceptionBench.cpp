@@ -6,7 +6,7 @@
 
 #include "controllers/StandController.h"
 #include "perception/CameraModel.h"
-#include "perception/vision/VisionPipeline.h"
+#include "perception/vision/CameraPipeline.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
 #include "sim/CameraRenderer.h"
@@ -71,21 +71,20 @@ PerceptionBenchResult benchPerception(const PerceptionBenchOptions& options) {
     if (options.progress) options.progress("render", f + 1, options.frames);
   }
 
-  // 2. Time the vision: one warm-up pass, then `repeats` timed passes.
-  for (int f = 0; f < std::min(20, options.frames); ++f) runVision(images[f], matrices[f]);
+  // 2. Time the vision (the camera pipeline, its modules timed one by one): one warm-up pass,
+  // then `repeats` timed passes.
+  CameraPipeline pipeline(options.camera, VisionGeometry{});
+  for (int f = 0; f < std::min(20, options.frames); ++f) pipeline.process(images[f], matrices[f]);
   std::vector<std::vector<double>> total(options.frames);
   std::map<std::string, std::vector<std::vector<double>>> stages;
   for (int rep = 0; rep < options.repeats; ++rep) {
     for (int f = 0; f < options.frames; ++f) {
-      const VisionResult r = runVision(images[f], matrices[f]);
-      for (const auto& [name, ms] : r.stageMs) {
-        if (name == "total") {
-          total[f].push_back(ms);
-          continue;
-        }
-        auto& v = stages[name];
+      pipeline.process(images[f], matrices[f]);
+      total[f].push_back(pipeline.totalMs());
+      for (const CameraPipeline::ModuleTime& t : pipeline.moduleMs()) {
+        auto& v = stages[t.module];
         v.resize(options.frames);
-        v[f].push_back(ms);
+        v[f].push_back(t.ms);
       }
     }
     if (options.progress) options.progress("perceive", rep + 1, options.repeats);

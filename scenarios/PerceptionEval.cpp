@@ -11,6 +11,7 @@
 #include "perception/CameraModel.h"
 #include "perception/Geometry.h"
 #include "perception/vision/Annotate.h"
+#include "perception/vision/CameraPipeline.h"
 #include "perception/vision/VisionPipeline.h"
 #include "robot/OutputFiles.h"
 #include "robot/Paths.h"
@@ -329,7 +330,9 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
     result.lightingOrder.push_back(l.name);
     result.byLighting[l.name];
   }
-  const VisionGeometry geometry = VisionGeometry::from(options.field);
+  // The robot's vision: one camera pipeline per camera, built from the same modules.
+  CameraPipeline pipelines[kNumCameras] = {CameraPipeline(CameraId::Top, options.field),
+                                           CameraPipeline(CameraId::Bottom, options.field)};
   const FieldModel& field = world.field();
   std::mt19937_64 rng(options.seed);
   std::uniform_real_distribution<double> uni(0, 1);
@@ -379,8 +382,10 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
         std::mt19937_64 noiseRng(options.seed * 1000003 + trial * 17 + static_cast<int>(camera));
         const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera),
                                                      res.width, res.height, lighting, camera, 0, noiseRng);
-        const VisionResult r = runVision(img, cm, geometry);
-        result.perceptionMs.push_back(r.stageMs.count("total") ? r.stageMs.at("total") : 0);
+        CameraPipeline& pipeline = pipelines[static_cast<int>(camera)];
+        pipeline.process(img, cm);
+        const VisionResult r = pipeline.visionResult();
+        result.perceptionMs.push_back(pipeline.totalMs());
         PerceptionFigures fig;
         scoreFrame(world, camera, truth, r, robotPose, fig);
         result.byLighting[lighting.name].add(fig);

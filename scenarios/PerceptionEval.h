@@ -64,7 +64,7 @@ struct PerceptionEvalResult {
   PerceptionFigures all;
   std::map<std::string, PerceptionFigures> byLighting;
   std::vector<std::string> lightingOrder;
-  std::vector<double> perceptionMs;  // runVision total per frame
+  std::vector<double> perceptionMs;  // the camera pipeline's total per frame
   nlohmann::json toJson() const;
 };
 

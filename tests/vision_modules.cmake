@@ -1,0 +1,7 @@
+# The vision as modules (issue 18): each module of the camera pipeline alone through the
+# harness on synthetic images with exact truth, and the camera pipeline itself (same percepts
+# as the hand-ordered vision it replaced, order, provider swap, timing, configuration).
+nao_add_test(vision_modules_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/vision/vision_modules_test.cpp
+             LIBS nao_perception nao_sim nao_controllers TIMEOUT 300)
+nao_add_test(camera_pipeline_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/vision/camera_pipeline_test.cpp
+             LIBS nao_perception nao_sim nao_controllers TIMEOUT 600)
