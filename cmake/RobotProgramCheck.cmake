@@ -1,5 +1,6 @@
-# The robot program runs unchanged on a real NAO: none of its targets may link the
-# simulator (MuJoCo, OSMesa) or anything under sim/. This walks each target's link
+# The robot program runs unchanged on a real NAO: none of its targets (its libraries, the
+# robot-only executable nao-soccer-robot) may link the simulator (MuJoCo, OSMesa), anything under
+# sim/ or scenarios/ (training, evaluations). This walks each target's link
 # closure at configure time and stops the configuration if one does.
 function(_nao_collect_links target out_var)
   set(seen ${${out_var}})
@@ -27,7 +28,7 @@ function(nao_check_robot_program)
     set(closure "")
     _nao_collect_links(${target} closure)
     foreach(lib IN LISTS closure)
-      if(lib MATCHES "mujoco|OSMesa|^nao_sim")
+      if(lib MATCHES "mujoco|OSMesa|^nao_sim|^nao_scenarios")
         message(FATAL_ERROR "robot program target '${target}' links '${lib}': the robot program must not depend on the simulator")
       endif()
     endforeach()

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # deploy_test: what robot/deploy/deploy.sh gives a robot, without a robot. `--dry-run` stages
-# the folder that rsync would copy to ~/nao-soccer; this checks its layout, that the venue's
-# field file lands at config/field_dimensions.json, and that the staged start script runs the
-# staged program with that file (a good field gets as far as waiting for LoLA; a bad one stops
-# the start with exit 2 and a line naming the key).
-# usage: deploy_test.sh NAO_SOCCER_BINARY SOURCE_DIR
+# the robot bundle that rsync would copy to ~/nao-soccer; this checks its layout and size (at
+# most 40 MB), that every library the program loads is the bundle's own (its loader in lib/),
+# that the venue's field file lands at config/field_dimensions.json, and that the staged start
+# script runs the staged program through the bundle's loader with that file (a good field gets
+# as far as waiting for LoLA; a bad one stops the start with exit 2 and a line naming the key).
+# usage: deploy_test.sh NAO_SOCCER_ROBOT_BINARY SOURCE_DIR
 set -euo pipefail
 bin=$1 src=$2
 tmp=$(mktemp -d /tmp/deploy_test.XXXXXX)
@@ -17,23 +18,35 @@ trap cleanup EXIT
 fail() { echo "deploy_test: FAILED: $*" >&2; exit 1; }
 
 mkdir -p "$tmp/build/bin"
-ln -s "$bin" "$tmp/build/bin/nao-soccer"
+ln -s "$bin" "$tmp/build/bin/nao-soccer-robot"
 # A venue field that differs from the default one, so the log shows which file was read.
 sed -e 's/"length": 9.0/"length": 10.4/' -e 's/"width": 6.0/"width": 7.4/' "$src/config/field_dimensions.json" >"$tmp/venue.json"
 grep -q '"length": 10.4' "$tmp/venue.json" || fail "could not make the venue field"
 
-out=$("$src/robot/deploy/deploy.sh" --dry-run --no-build --no-bundle-libs --build-dir "$tmp/build" \
+out=$("$src/robot/deploy/deploy.sh" --dry-run --no-build --build-dir "$tmp/build" \
   --team 12 --player 3 --field "$tmp/venue.json" --extra "--cameras none --lola-socket $tmp/lola.sock" nao-12.local)
 echo "$out"
 stage="$tmp/build/deploy-stage"
-echo "$out" | grep -Eq "rsync +-az +--delete +--exclude +config/calibration/ +$stage/ +nao@nao-12.local:nao-soccer/" ||
-  fail "no rsync to nao@nao-12.local:nao-soccer/ that keeps the robot's config/calibration/"
-for f in bin/nao-soccer bin/nao-soccer-start nao-soccer.service nao-soccer.env config/field_dimensions.json \
-  models/vision/ball_classifier.yml; do
+echo "$out" | grep -Eq "rsync +-a +--delete +--exclude +config/calibration/ .* $stage/ +nao@nao-12.local:nao-soccer.d/[0-9-]+\.partial/" ||
+  fail "no rsync into a new folder nao@nao-12.local:nao-soccer.d/STAMP.partial/ that keeps the robot's config/calibration/"
+bytes=$(echo "$out" | sed -n 's/^deploy: staged [0-9.]* MB (\([0-9]*\) bytes.*/\1/p')
+[ -n "$bytes" ] || fail "--dry-run did not print the bundle's size"
+[ "$bytes" -le $((40 * 1048576)) ] || fail "the bundle is $bytes bytes, more than 40 MB"
+for f in bin/nao-soccer-robot bin/nao-soccer-start lib/ld-linux-x86-64.so.2 lib/libc.so.6 lib/libstdc++.so.6 \
+  nao-soccer.service nao-soccer.env config/field_dimensions.json config/modules.json models/vision/ball_classifier.yml; do
   [ -f "$stage/$f" ] || fail "$f is not staged"
 done
-if [ ! -x "$stage/bin/nao-soccer" ] || [ ! -x "$stage/bin/nao-soccer-start" ]; then fail "the staged programs are not executable"; fi
-cmp -s "$stage/bin/nao-soccer" "$bin" || fail "the staged binary is not the built one"
+if [ ! -x "$stage/bin/nao-soccer-robot" ] || [ ! -x "$stage/bin/nao-soccer-start" ]; then fail "the staged programs are not executable"; fi
+cmp -s "$stage/bin/nao-soccer-robot" "$bin" || fail "the staged binary is not the built one"
+# ldd of the staged program: everything resolves inside the bundle (its DT_RPATH $ORIGIN/../lib),
+# and through the bundle's own loader nothing comes from the build machine's folders.
+outside=$(ldd "$stage/bin/nao-soccer-robot" | awk '/=>/ {print $3}' | sed 's#/bin/\.\./lib/#/lib/#' | grep -v "^$stage/lib/" || true)
+[ -z "$outside" ] || fail "ldd: libraries from outside the bundle: $outside"
+outside=$("$stage/lib/ld-linux-x86-64.so.2" --list "$stage/bin/nao-soccer-robot" | awk '/=>/ {print $3}' | sed 's#/bin/\.\./lib/#/lib/#' | grep -v "^$stage/lib/" || true)
+[ -z "$outside" ] || fail "the bundle's loader takes libraries from outside the bundle: $outside"
+if find "$stage" -name 'libmujoco*' -o -name 'libOSMesa*' -o -name 'libGL.so*' -o -name 'libLLVM*' | grep -q .; then
+  fail "the bundle holds simulator libraries: $(find "$stage" -name 'libmujoco*' -o -name 'libOSMesa*' -o -name 'libGL.so*' -o -name 'libLLVM*' | head -n 3 | xargs)"
+fi
 cmp -s "$stage/config/field_dimensions.json" "$tmp/venue.json" || fail "the venue field is not config/field_dimensions.json"
 if ! grep -qx 'TEAM=12' "$stage/nao-soccer.env" || ! grep -qx 'PLAYER=3' "$stage/nao-soccer.env"; then fail "nao-soccer.env lacks TEAM/PLAYER"; fi
 grep -q '^ExecStart=%h/nao-soccer/bin/nao-soccer-start$' "$stage/nao-soccer.service" || fail "the unit does not start nao-soccer-start"

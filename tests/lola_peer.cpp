@@ -261,6 +261,11 @@ struct Child {
   }
 };
 
+// --chroot ROOT: the program runs in ROOT (a root holding nothing but the robot bundle, or an
+// older OS), its socket in ROOT/tmp; --prefix ARG...: words before the program (its loader).
+std::string chrootDir;
+std::vector<std::string> prefix;
+
 Child spawn(const std::vector<std::string>& args, const std::string& log) {
   Child c;
   c.log = log;
@@ -270,6 +275,10 @@ Child spawn(const std::vector<std::string>& args, const std::string& log) {
     dup2(fd, 2);
     const int null = ::open("/dev/null", O_WRONLY);
     dup2(null, 1);
+    if (!chrootDir.empty() && (::chroot(chrootDir.c_str()) != 0 || ::chdir("/") != 0)) {
+      std::perror("chroot");
+      _exit(127);
+    }
     std::vector<char*> argv;
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -554,12 +563,15 @@ void expectRamp(Peer& peer, Robot& robot, double& tick, int maxCycles, const std
 bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
 std::string mkWorkDir() {
-  char tmpl[] = "/tmp/lola_peer.XXXXXX";
-  if (!mkdtemp(tmpl)) {
+  std::string pattern = chrootDir + "/tmp/lola_peer.XXXXXX";
+  if (!chrootDir.empty()) ::mkdir((chrootDir + "/tmp").c_str(), 01777);
+  std::vector<char> tmpl(pattern.begin(), pattern.end());
+  tmpl.push_back('\0');
+  if (!mkdtemp(tmpl.data())) {
     std::perror("mkdtemp");
     std::exit(2);
   }
-  return tmpl;
+  return std::string(tmpl.data());
 }
 
 int listenOn(const std::string& path) {
@@ -597,7 +609,12 @@ Run start(const std::string& bin, const std::string& dir, const std::string& nam
   r.dir = dir;
   r.socket = dir + "/" + name + ".sock";
   r.listener = listenOn(r.socket);
-  std::vector<std::string> args = {bin, "run", "--backend", "nao", "--cameras", "none", "--lola-socket", r.socket};
+  // The socket's path as the program sees it (inside --chroot's root).
+  const std::string socket = r.socket.substr(chrootDir.size());
+  std::vector<std::string> args = prefix;
+  for (const std::string& a : {bin, std::string("run"), std::string("--backend"), std::string("nao"),
+                               std::string("--cameras"), std::string("none"), std::string("--lola-socket"), socket})
+    args.push_back(a);
   args.insert(args.end(), extra.begin(), extra.end());
   r.child = spawn(args, dir + "/" + name + ".stderr");
   r.fd = acceptClient(r.listener, r.child);
@@ -823,6 +840,27 @@ void mainRun(const std::string& bin, const std::string& dir, int normalCycles, i
   ::close(gcFd);
 }
 
+// Until the program ends after a stop: every answer soft in place, at least two of them, and
+// the program exits.
+void expectSoftStop(Peer& peer, Robot& robot, double& tick, Run& run) {
+  Answer a;
+  int soft = 0;
+  for (int c = 0; c < 400 && !peer.eof(); ++c) {
+    if (!cycle(peer, robot, tick, a)) {
+      if (run.child.exited(0)) break;
+      continue;
+    }
+    if (a.maxStiffness() == 0) {
+      ++soft;
+      softInPlace(a, robot.lastMeasured, "stopping");
+    } else {
+      check(soft == 0, "stiff again after going soft for the stop");
+    }
+  }
+  check(soft >= 2, "only " + std::to_string(soft) + " soft answers before the program ended");
+  check(run.child.exited(5000), "the program did not exit");
+}
+
 // SIGTERM / SIGINT / --seconds: the run ends softly (soft in place, reason logged, exit 0).
 // The SIGTERM run also holds the head buttons (unstiffen) and presses the chest (stiffen).
 void stopRun(const std::string& bin, const std::string& dir, const std::string& how) {
@@ -855,22 +893,7 @@ void stopRun(const std::string& bin, const std::string& dir, const std::string& 
     for (int c = 0; c < 30; ++c) cycle(peer, robot, tick, a);
     kill(run.child.pid, how == "SIGTERM" ? SIGTERM : SIGINT);
   }
-  // Until the program ends: every answer after the stop is soft in place.
-  int soft = 0;
-  for (int c = 0; c < 400 && !peer.eof(); ++c) {
-    if (!cycle(peer, robot, tick, a)) {
-      if (run.child.exited(0)) break;
-      continue;
-    }
-    if (a.maxStiffness() == 0) {
-      ++soft;
-      softInPlace(a, robot.lastMeasured, "stopping");
-    } else {
-      check(soft == 0, "stiff again after going soft for the stop");
-    }
-  }
-  check(soft >= 2, "only " + std::to_string(soft) + " soft answers before the program ended");
-  check(run.child.exited(5000), "the program did not exit");
+  expectSoftStop(peer, robot, tick, run);
   check(run.child.exitCode() == 0, "exit code " + std::to_string(run.child.exitCode()) + " after " + how + ", expected 0");
   const std::string log = run.child.stderrText();
   const std::string expected = how == "seconds" ? "going soft in place: stopping: --seconds 2 reached"
@@ -884,18 +907,48 @@ void stopRun(const std::string& bin, const std::string& dir, const std::string& 
   ::close(run.listener);
 }
 
+// --soak SECONDS (the robot bundle's proof in a root of its own): the ramp, then SECONDS of
+// normal cycles, every answer judged against the 12 ms cycle, then SIGTERM: soft in place until
+// the program ends with exit 0.
+void soakRun(const std::string& bin, const std::string& dir, double seconds) {
+  check.phase = "soak";
+  Run run = start(bin, dir, "soak", {});
+  Peer peer(run.fd, run.child);
+  Robot robot;
+  double tick = monotonic() + 0.05;
+  Answer a;
+  expectRamp(peer, robot, tick, 200, "soak start");
+  const int cycles = static_cast<int>(seconds / kCycle + 0.5);
+  for (int c = 0; c < cycles && !peer.eof(); ++c) cycle(peer, robot, tick, a, Damage::None, true);
+  check(!peer.eof(), "the program closed the socket during the soak");
+  kill(run.child.pid, SIGTERM);
+  expectSoftStop(peer, robot, tick, run);
+  check(run.child.exitCode() == 0, "exit code " + std::to_string(run.child.exitCode()) + " after SIGTERM, expected 0");
+  const std::string log = run.child.stderrText();
+  check(contains(log, "going soft in place: SIGTERM received: stopping"), "the log lacks the soft stop on SIGTERM");
+  if (!check.failures.empty()) std::fprintf(stderr, "lola_peer: the program's stderr:\n%s\n", log.c_str());
+  ::close(run.fd);
+  ::close(run.listener);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string bin, json;
   int cycles = 1000;
+  double soak = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--nao-soccer" && i + 1 < argc) bin = argv[++i];
     else if (a == "--cycles" && i + 1 < argc) cycles = std::atoi(argv[++i]);
     else if (a == "--json" && i + 1 < argc) json = argv[++i];
+    else if (a == "--soak" && i + 1 < argc) soak = std::atof(argv[++i]);
+    else if (a == "--chroot" && i + 1 < argc) chrootDir = argv[++i];
+    else if (a == "--prefix" && i + 1 < argc) prefix.push_back(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: lola_peer --nao-soccer BIN [--cycles N] [--json FILE]\n");
+      std::fprintf(stderr,
+                   "usage: lola_peer --nao-soccer BIN [--cycles N] [--json FILE]\n"
+                   "       lola_peer --nao-soccer BIN --soak SECONDS [--chroot ROOT] [--prefix ARG]... [--json FILE]\n");
       return 2;
     }
   }
@@ -932,10 +985,14 @@ int main(int argc, char** argv) {
   if (setpriority(PRIO_PROCESS, 0, -10) != 0) std::fprintf(stderr, "lola_peer: running at normal priority\n");
   const std::string dir = mkWorkDir();
   int returnPackets = 0;
-  mainRun(bin, dir, cycles, returnPackets);
-  stopRun(bin, dir, "SIGTERM");
-  stopRun(bin, dir, "SIGINT");
-  stopRun(bin, dir, "seconds");
+  if (soak > 0) {
+    soakRun(bin, dir, soak);
+  } else {
+    mainRun(bin, dir, cycles, returnPackets);
+    stopRun(bin, dir, "SIGTERM");
+    stopRun(bin, dir, "SIGINT");
+    stopRun(bin, dir, "seconds");
+  }
 
   auto& l = figures.latencyMs;
   std::sort(l.begin(), l.end());
