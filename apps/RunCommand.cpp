@@ -42,6 +42,7 @@ int runCommand(const RunOptions& options) {
                         {"sim_seconds", r.simSeconds},
                         {"cycles", r.cycles},
                         {"images", {{"top", r.imagesTop}, {"bottom", r.imagesBottom}}},
+                        {"images_processed", {{"top", r.imagesProcessedTop}, {"bottom", r.imagesProcessedBottom}}},
                         {"fell", r.fell},
                         {"torso_height_m", {{"min", r.torsoHeightMin}, {"max", r.torsoHeightMax}}},
                         {"final_pose", {r.finalPose.x(), r.finalPose.y(), r.finalPose.z() * 180 / M_PI}},

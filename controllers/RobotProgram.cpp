@@ -4,6 +4,7 @@
 
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
+#include "representations/perception/VisionGeometry.h"
 #include "robot/ModuleRegistry.h"
 #include "robot/Paths.h"
 
@@ -47,6 +48,7 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   if (!config.configDir.empty()) context.configDir = config.configDir;
   context.headId = config.headId;
   if (config.motion) context.params["MotionEngine"] = *config.motion;
+  if (config.field) context.params["CameraVision"] = VisionGeometry::from(*config.field);
 
   motionBoard_.write<CameraCalibration>() = config.calibration;
   motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand

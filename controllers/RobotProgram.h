@@ -11,6 +11,7 @@
 
 #include "controllers/MotionEngine.h"
 #include "perception/CameraCalibration.h"
+#include "perception/FieldDimensions.h"
 #include "representations/behavior/HeadMotionRequest.h"
 #include "representations/behavior/MotionRequest.h"
 #include "representations/infrastructure/CameraImages.h"
@@ -37,6 +38,9 @@ struct RobotProgramConfig {
   std::string headId;  // selects config/robots/<head id>/ overlays; empty: none
   // Representation -> module, replacing config/modules.json's entries (e.g. an oracle).
   std::map<std::string, std::string> providers;
+  // The field the robot plays on (the vision's painted sizes); unset: field_dimensions.json in
+  // the configuration folder.
+  std::optional<FieldDimensions> field;
 
   static std::string defaultConfigDir();
 };

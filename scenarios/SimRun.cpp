@@ -64,6 +64,7 @@ SimRunResult runSim(const SimRunOptions& options) {
   RobotProgramConfig config;
   config.calibration = calibration::CalibrationStore().offsetsFor(backend.robotInfo().headId);
   config.headId = backend.robotInfo().headId;  // config/robots/<head id>/ overlays, if any
+  config.field = options.field;
   RobotProgram program(config);
   result.moduleOrder = program.moduleOrder();
   const auto wallStart = Clock::now();
@@ -93,6 +94,8 @@ SimRunResult runSim(const SimRunOptions& options) {
     if (options.progress && c % 83 == 0) options.progress(world.time());
   }
   result.wallSeconds = std::chrono::duration<double>(Clock::now() - wallStart).count();
+  result.imagesProcessedTop = program.cognitionRuns()[static_cast<int>(CameraId::Top)];
+  result.imagesProcessedBottom = program.cognitionRuns()[static_cast<int>(CameraId::Bottom)];
   result.simSeconds = world.time();
   result.finalPose = world.robotPose(0);
   if (!options.imagesDir.empty()) {

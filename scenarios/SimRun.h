@@ -30,7 +30,8 @@ struct SimRunOptions {
 struct SimRunResult {
   double simSeconds = 0, wallSeconds = 0;
   std::uint64_t cycles = 0;
-  int imagesTop = 0, imagesBottom = 0;
+  int imagesTop = 0, imagesBottom = 0;  // delivered by the simulated cameras
+  long imagesProcessedTop = 0, imagesProcessedBottom = 0;  // run through the robot program's cognition
   std::vector<double> renderMsTop, renderMsBottom;
   bool fell = false;
   double torsoHeightMin = 0, torsoHeightMax = 0;

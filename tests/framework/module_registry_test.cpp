@@ -63,7 +63,7 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"CameraMatrixProvider", "ExposureCameraMatrixProvider", "FallDetector",
+  EXPECT_EQ(chosenModules(p), (Names{"CameraMatrixProvider", "CameraVision", "ExposureCameraMatrixProvider", "FallDetector",
                                      "FrameHistoryProvider", "HeadControl", "MotionEngine", "TorsoMatrixProvider"}));
 }
 
@@ -111,7 +111,7 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
   RobotProgram program;
   // Motion in dependency order, then cognition.
   EXPECT_EQ(program.moduleOrder(), (Names{"TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
-                                          "HeadControl", "MotionEngine", "ExposureCameraMatrixProvider"}));
+                                          "HeadControl", "MotionEngine", "ExposureCameraMatrixProvider", "CameraVision"}));
 }
 
 TEST(RobotProgram, AProviderSwappedByConfiguration) {

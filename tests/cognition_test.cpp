@@ -1,0 +1,85 @@
+// The robot program sees: in the simulator, every camera image runs through the robot
+// program's own cognition (ExposureCameraMatrixProvider, CameraVision with both cameras'
+// CameraPipeline), and the field lines it reports lie on the field's real lines, judged by the
+// simulator's truth (the robot's true pose and the field model), not by anything the program
+// computed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <random>
+
+#include "controllers/RobotProgram.h"
+#include "controllers/StandController.h"
+#include "perception/FieldDimensions.h"
+#include "representations/perception/CameraPercepts.h"
+#include "robot/Paths.h"
+#include "sim/CameraRenderer.h"
+#include "sim/Lighting.h"
+#include "sim/SimBackend.h"
+#include "sim/World.h"
+
+namespace nao {
+namespace {
+
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+TEST(Cognition, TheRobotProgramSeesTheFieldLinesWhereTheyAre) {
+  const FieldDimensions field = FieldDimensions::load(dataPath("config/field_dimensions.json"));
+  const FieldModel model = FieldModel::from(field);
+  sim::SceneSpec spec;
+  spec.field = field;
+  const Eigen::Vector3d pose(-3.2, -3.0, M_PI / 2);  // on the side line, facing the field
+  spec.robots = {pose};
+  sim::World world(spec, 3);
+  world.placeRobot(0, pose, StandController::standPosture());
+  sim::SimBackend backend(world, 0, true);
+  sim::CameraRenderer renderer(world.model());
+  std::mt19937_64 rng(3);
+  const sim::Lighting lighting = sim::Lighting::parse("default", dataPath("config/lighting.json"));
+  backend.setImageSource([&](CameraId cam, double time) {
+    const sim::CameraResolution res = world.cameraResolution(cam);
+    return renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width, res.height,
+                                lighting, cam, time, rng);
+  });
+  RobotProgramConfig config;
+  config.field = field;
+  RobotProgram program(config);
+
+  int perceptSets = 0, lines = 0, offLines = 0;
+  long runs = 0;
+  for (int c = 0; c < 125; ++c) {  // 1.5 s
+    ASSERT_TRUE(program.cycle(backend));
+    const long now = program.cognitionRuns()[0] + program.cognitionRuns()[1];
+    if (now == runs) continue;
+    runs = now;
+    const CameraPercepts& p = program.cognitionBoard().read<CameraPercepts>();
+    ++perceptSets;
+    const Eigen::Vector3d truth = world.robotPose(0);
+    const Eigen::Rotation2Dd r(truth.z());
+    for (const auto& l : p.lines) {
+      ++lines;
+      for (const Eigen::Vector2d& end : {l.from, l.to}) {
+        const Eigen::Vector2d f = r * end + truth.head<2>();
+        double best = 1e9;
+        for (const auto& fl : model.lines) best = std::min(best, distanceToSegment(f, fl.from, fl.to));
+        if (best > 0.15) ++offLines;
+      }
+    }
+  }
+  std::printf("cognition: %ld top + %ld bottom images, %d lines, %d of %d line ends off the field's lines\n",
+              program.cognitionRuns()[0], program.cognitionRuns()[1], lines, offLines, 2 * lines);
+  // 30 Hz per camera for 1.5 s, less the first frames before the robot program's first cycle.
+  EXPECT_GE(program.cognitionRuns()[0], 40);
+  EXPECT_GE(program.cognitionRuns()[1], 40);
+  EXPECT_GE(perceptSets, 40);
+  EXPECT_GT(lines, 40) << "the robot program saw hardly any lines";
+  EXPECT_LE(offLines, lines / 20) << offLines << " of " << 2 * lines << " line ends off every field line";
+}
+
+}  // namespace
+}  // namespace nao
