@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <csignal>
 #include <cerrno>
 #include <climits>
 #include <cstring>
@@ -192,6 +193,26 @@ std::string outputDirectoryProblem(const std::string& dir) {
   if (!fs::is_directory(p, ec)) return p.string() + " exists and is not a folder";
   if (::access(p.c_str(), W_OK | X_OK) != 0) return p.string() + " is not writable (" + errnoText() + ")";
   return "";
+}
+
+namespace {
+
+// Only async-signal-safe calls: unlink, rmdir, signal, raise. The interrupted thread may have
+// been changing the lists; at worst a file is left, never a wrong one removed.
+void discardAndDie(int sig) {
+  if (OutputTransaction* t = TransactionAccess::open()) {
+    for (const auto& s : TransactionAccess::staged(*t)) ::unlink(s.temp.c_str());
+    const auto& made = TransactionAccess::made(*t);
+    for (auto it = made.rbegin(); it != made.rend(); ++it) ::rmdir(it->c_str());
+  }
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+}  // namespace
+
+void OutputTransaction::discardOnSignals() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, discardAndDie);
 }
 
 OutputTransaction::OutputTransaction() {

@@ -40,6 +40,9 @@ class OutputTransaction {
   void commit();
   // Removes the staged files and the folders made for them.
   void discard();
+  // Discards too when the process is interrupted (SIGINT, SIGTERM, SIGHUP), then dies of the
+  // signal as it would have. A handler installed later (the NAO backend's soft stop) wins.
+  void discardOnSignals();
 
  private:
   friend struct TransactionAccess;

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -142,6 +143,24 @@ TEST(Cli, FullDiskFailsAndLeavesNothing) {
   EXPECT_EQ(lines(r.out), 1) << r.out;
   EXPECT_NE(r.out.find("/dev/full"), std::string::npos) << r.out;
   EXPECT_FALSE(std::ifstream(png).good()) << png << " was left behind";
+}
+
+// Interrupted (Ctrl-C) halfway: the pictures written so far and the folder the run made are
+// gone, not left as half a result.
+TEST(Cli, InterruptedRunLeavesNothing) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "interrupted" / "images";
+  fs::remove_all(dir.parent_path());
+  const std::string cmd = std::string(NAO_BINARY) + " run --seconds 60 --images " + dir.string() +
+                          " >/dev/null 2>&1 & pid=$!; sleep 4; kill -INT $pid; wait $pid; echo $?";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buf[64] = "";
+  ASSERT_NE(fgets(buf, sizeof buf, p), nullptr);
+  pclose(p);
+  EXPECT_EQ(std::atoi(buf), 130) << "not ended by SIGINT: " << buf;  // 128 + SIGINT
+  // The run made both folders; both are gone.
+  EXPECT_FALSE(fs::exists(dir.parent_path())) << dir.parent_path() << " was left behind";
 }
 
 // MuJoCo's warnings go to stderr as one line: stdout carries the JSON alone, and no

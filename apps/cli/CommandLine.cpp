@@ -428,6 +428,7 @@ int CommandLine::main(int argc, const char* const* argv) {
   if (!command->run) return fail(command->path(), "this program does not run it", 2);
   try {
     io::OutputTransaction outputs;
+    outputs.discardOnSignals();
     const int code = command->run();
     if (std::fflush(stdout) != 0) throw RunFailure("stdout", "write failed");
     outputs.commit();
