@@ -45,7 +45,7 @@ outside=$(ldd "$stage/bin/nao-soccer-robot" | awk '/=>/ {print $3}' | sed 's#/bi
 outside=$("$stage/lib/ld-linux-x86-64.so.2" --list "$stage/bin/nao-soccer-robot" | awk '/=>/ {print $3}' | sed 's#/bin/\.\./lib/#/lib/#' | grep -v "^$stage/lib/" || true)
 [ -z "$outside" ] || fail "the bundle's loader takes libraries from outside the bundle: $outside"
 if find "$stage" -name 'libmujoco*' -o -name 'libOSMesa*' -o -name 'libGL.so*' -o -name 'libLLVM*' | grep -q .; then
-  fail "the bundle holds simulator libraries: $(find "$stage" -name 'libmujoco*' -o -name 'libOSMesa*' -o -name 'libGL.so*' -o -name 'libLLVM*' | head -n 3 | xargs)"
+  fail "the bundle holds simulator libraries: $(find "$stage" -name 'libmujoco*' -o -name 'libOSMesa*' -o -name 'libGL.so*' -o -name 'libLLVM*' | awk 'NR <= 3' | xargs)"
 fi
 cmp -s "$stage/config/field_dimensions.json" "$tmp/venue.json" || fail "the venue field is not config/field_dimensions.json"
 if ! grep -qx 'TEAM=12' "$stage/nao-soccer.env" || ! grep -qx 'PLAYER=3' "$stage/nao-soccer.env"; then fail "nao-soccer.env lacks TEAM/PLAYER"; fi

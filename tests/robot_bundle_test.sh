@@ -50,7 +50,9 @@ case "$mode" in
       fi
       mv "$root.partial" "$root"
     fi
-    glibc=$(chroot "$root" /usr/bin/ldd --version 2>/dev/null | head -n 1 | awk '{print $NF}')
+    # awk reads to the end: `head` would leave ldd writing into a closed pipe (SIGPIPE, and with
+    # pipefail a silent exit of this script).
+    glibc=$(chroot "$root" /usr/bin/ldd --version 2>/dev/null | awk 'NR == 1 {print $NF}')
     echo "robot_bundle_test: Debian $(cat "$root/etc/debian_version") root, glibc $glibc"
     ;;
   *) fail "mode '$mode' (empty or debian11)" ;;
@@ -69,7 +71,7 @@ if [ "$mode" = debian11 ]; then
   fi
 fi
 if [ "$mode" = empty ]; then
-  others=$(cd "$root" && find . -mindepth 1 -not -path './home' -not -path './home/nao' -not -path "./home/nao/nao-soccer-test.$$*" | head -n 3)
+  others=$(cd "$root" && find . -mindepth 1 -not -path './home' -not -path './home/nao' -not -path "./home/nao/nao-soccer-test.$$*" | awk 'NR <= 3')
   [ -z "$others" ] || fail "the root holds more than the bundle: $others"
 fi
 
@@ -78,7 +80,7 @@ chroot "$root" "$inside/lib/ld-linux-x86-64.so.2" --list "$inside/bin/nao-soccer
   { cat "$tmp/ldd.out" >&2; fail "the bundle's loader cannot list the program's libraries in the root"; }
 outside=$(awk '/=>/ {print $3}' "$tmp/ldd.out" | sed 's#/bin/\.\./lib/#/lib/#' | grep -v "^$inside/lib/" || true)
 [ -z "$outside" ] || fail "libraries from outside the bundle: $outside"
-grep -q 'not found' "$tmp/ldd.out" && fail "missing libraries: $(grep 'not found' "$tmp/ldd.out" | head -n 3 | xargs)"
+grep -q 'not found' "$tmp/ldd.out" && fail "missing libraries: $(grep -m 3 'not found' "$tmp/ldd.out" | xargs)"
 
 NAO_SOCCER_HOME="$inside" "$peer" --nao-soccer "$inside/bin/nao-soccer-robot" --soak 10 --chroot "$root" \
   --prefix "$inside/lib/ld-linux-x86-64.so.2" --prefix --argv0 --prefix "$inside/bin/nao-soccer-robot" \

@@ -92,7 +92,7 @@ if [ "$bundle" = 1 ] && [ -z "$toolchain" ]; then
   [ -n "$loader" ] || die "$binary: no dynamic loader in ldd's output"
   cp -L "$loader" "$stage/lib/ld-linux-x86-64.so.2"
   awk '/=> \// {print $3}' "$stage/lib/.ldd" | while read -r lib; do cp -L "$lib" "$stage/lib/"; done
-  if grep -q 'not found' "$stage/lib/.ldd"; then die "$binary: $(grep 'not found' "$stage/lib/.ldd" | head -1 | xargs)"; fi
+  if grep -q 'not found' "$stage/lib/.ldd"; then die "$binary: $(grep -m 1 'not found' "$stage/lib/.ldd" | xargs)"; fi
   rm "$stage/lib/.ldd"
   # Debug sections are not needed on the robot (the build tree keeps the unstripped program).
   strip --strip-debug "$stage/lib/"*.so* 2>/dev/null || true
@@ -143,7 +143,7 @@ esac
 
 # 2. The copy into a new folder; the running install is not touched.
 if ! "${rsync_cmd[@]}" 2>"$err" >/dev/null; then
-  msg=$(grep -E 'No space left|rsync:|ssh:' "$err" | head -n 1)
+  msg=$(grep -m 1 -E 'No space left|rsync:|ssh:' "$err" || true)
   "${ssh_cmd[@]}" "$target" "rm -rf nao-soccer.d/$stamp.partial" 2>/dev/null || true
   fail "copying the bundle failed (${msg:-$(last_line "$err")}); the previous install was left running"
 fi
@@ -183,7 +183,7 @@ if [ $systemd = 1 ]; then
   systemctl --user enable nao-soccer >/dev/null 2>&1
   systemctl --user start nao-soccer
   sleep 3
-  systemctl --user --no-pager status nao-soccer | head -n 5
+  systemctl --user --no-pager status nao-soccer 2>&1 | sed -n '1,5p' || true
   journalctl --user -u nao-soccer -n 15 --no-pager 2>/dev/null || true
 else
   nohup ~/nao-soccer/bin/nao-soccer-start >~/nao-soccer/nao-soccer.log 2>&1 </dev/null &
