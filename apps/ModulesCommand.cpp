@@ -25,8 +25,11 @@ std::string joined(const std::vector<std::string>& v) {
 int modulesCommand(const ModulesOptions& options) {
   const std::vector<ModuleInfo> modules = registeredModules();
   const ProviderMap providers = loadProviders(dataPath("config/modules.json"));
-  const std::vector<std::string> chosen = chosenModules(providers);
-  const std::set<std::string> inUse(chosen.begin(), chosen.end());
+  // In use: chosen by the robot program (config/modules.json) or by each camera's vision
+  // pipeline (config/camera_modules.json).
+  std::set<std::string> inUse;
+  for (const std::string& file : {std::string("config/modules.json"), std::string("config/camera_modules.json")})
+    for (const auto& name : chosenModules(loadProviders(dataPath(file)))) inUse.insert(name);
   if (options.dot) {
     std::ostringstream dot;
     writeModuleGraphDot(dot, modules, providers);
