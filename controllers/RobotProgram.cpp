@@ -4,6 +4,7 @@
 
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
+#include "representations/infrastructure/GameState.h"
 #include "representations/perception/VisionGeometry.h"
 #include "robot/ModuleRegistry.h"
 #include "robot/Paths.h"
@@ -16,9 +17,9 @@ template <class... T>
 struct TypeList {};
 
 // What crosses between the cadences (docs/architecture.md). Motion to cognition: the state
-// cognition interprets its images with; the calibration the app sets. Cognition to motion: the
+// cognition interprets its images with; the calibration and the game state the app sets. Cognition to motion: the
 // behaviour's requests.
-using MotionToCognition = TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration>;
+using MotionToCognition = TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState>;
 using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest>;
 
 template <class T>
@@ -53,12 +54,13 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   motionBoard_.write<CameraCalibration>() = config.calibration;
   motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand
   motionBoard_.write<HeadMotionRequest>() = HeadMotionRequest{};
-  // Motion's inputs: what the cycle writes (backend), what the app sets (calibration), and the
+  motionBoard_.write<GameState>() = GameState{};
+  // Motion's inputs: what the cycle writes (backend), what the app sets (calibration, game state), and the
   // behaviour's requests: copied from cognition when a cognition module provides them, else
   // written by a scenario, a test or the app.
-  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest>();
+  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest, GameState>();
   std::set<std::type_index> motionHas = {typeid(SensorFrame), typeid(CameraImages), typeid(CameraCalibration),
-                                         typeid(MotionRequest), typeid(HeadMotionRequest)};
+                                         typeid(MotionRequest), typeid(HeadMotionRequest), typeid(GameState)};
   std::set<std::type_index> cognitionHas;
   for (const std::string& name : chosenModules(providers)) {
     std::unique_ptr<ModuleBase> m = createModule(name, context);

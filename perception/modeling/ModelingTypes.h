@@ -11,6 +11,8 @@
 
 #include "controllers/MotionRequest.h"
 #include "perception/vision/VisionTypes.h"
+#include "representations/modeling/BallModel.h"
+#include "representations/modeling/RobotPose.h"
 
 namespace nao {
 
@@ -39,17 +41,6 @@ struct LocalizationInput {
   double gyroZ = 0;                   // rad/s; field-feature resets are refused while |gyroZ| is high
 };
 
-// The self-localization's result.
-struct RobotPose {
-  Pose2 pose;                                                // the robot in the field frame
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();  // of (x m, y m, theta rad)
-  double quality = 0;  // 0..1: the best hypothesis' recent share of percepts that fitted
-  bool valid = false;  // quality and covariance good enough to act on
-  int hypotheses = 0;  // how many hypotheses the filter keeps
-  double sigmaTranslation() const;  // m, sqrt of the largest eigenvalue of the xy block
-  double sigmaRotation() const;     // rad
-};
-
 // The robot-frame motion between two odometry readings (the inputs' Odometry::pose):
 // from.inverse() * to, or nullopt when either is not finite.
 std::optional<Pose2> odometryDelta(const Pose2& from, const Pose2& to);
@@ -67,23 +58,6 @@ struct BallInput {
   std::vector<BallObservation> observations;  // this cycle's ball percepts (both cameras)
   bool ballExpectedInView = false;    // the model's ball lay inside a camera image this cycle
   std::optional<Pose2> robotPose;     // for the field-frame outputs, when localized
-};
-
-// The ball model's result. Robot frame unless named field*.
-struct BallModel {
-  bool valid = false;   // a ball has been seen since the last reset
-  bool lost = false;    // not seen in `lostAfterFrames` cycles in which it should have been
-  bool rolling = false; // the rolling hypothesis is selected
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();     // m
-  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();     // m/s
-  Eigen::Matrix4d covariance = Eigen::Matrix4d::Identity();  // of (x, y, vx, vy)
-  Eigen::Vector2d endPosition = Eigen::Vector2d::Zero();  // where it stops (constant deceleration)
-  double seenTime = -1;  // s, time of the last percept used
-  int unseenFrames = 0;  // consecutive cycles it should have been seen and was not
-  bool fieldValid = false;  // the field-frame values below are set (a robot pose was given)
-  Eigen::Vector2d fieldPosition = Eigen::Vector2d::Zero();
-  Eigen::Vector2d fieldVelocity = Eigen::Vector2d::Zero();
-  Eigen::Vector2d fieldEndPosition = Eigen::Vector2d::Zero();
 };
 
 }  // namespace nao

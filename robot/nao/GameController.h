@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "representations/infrastructure/ButtonState.h"
+#include "representations/infrastructure/GameState.h"
 #include "robot/JointIds.h"
 
 namespace nao::gc {
@@ -24,14 +26,6 @@ inline constexpr int kMaxPlayers = 20;
 inline constexpr std::uint16_t kPort = 3838;
 inline constexpr std::uint16_t kReturnPort = 3939;
 
-enum class State : std::uint8_t { Initial = 0, Ready = 1, Set = 2, Playing = 3, Finished = 4, Standby = 5 };
-enum class GamePhase : std::uint8_t { Normal = 0, PenaltyShootout = 1, Overtime = 2, Timeout = 3 };
-enum class SetPlay : std::uint8_t { None = 0, GoalKick = 1, PushingFreeKick = 2, CornerKick = 3, KickIn = 4, PenaltyKick = 5 };
-enum class Penalty : std::uint8_t {
-  None = 0, IllegalBallContact = 1, PlayerPushing = 2, IllegalMotionInSet = 3, InactivePlayer = 4,
-  IllegalPosition = 5, LeavingTheField = 6, RequestForPickup = 7, LocalGameStuck = 8,
-  IllegalPositionInSet = 9, PlayerStance = 10, IllegalMotionInStandby = 11, Substitute = 14, Manual = 15
-};
 const char* stateName(State s);
 const char* penaltyName(Penalty p);
 bool validPenalty(std::uint8_t code);
@@ -89,41 +83,6 @@ std::array<std::uint8_t, kReturnSize> serialize(const ReturnData& data);
 }  // namespace nao::gc
 
 namespace nao {
-
-// The robot's view of the game (a blackboard representation).
-struct GameState {
-  gc::State state = gc::State::Initial;
-  gc::GamePhase gamePhase = gc::GamePhase::Normal;
-  gc::SetPlay setPlay = gc::SetPlay::None;
-  gc::Penalty penalty = gc::Penalty::None;  // this robot's
-  int secsTillUnpenalised = 0;
-  bool firstHalf = true;
-  bool ownKickOff = false;  // kickingTeam == own team
-  int secsRemaining = 0, secondaryTime = 0;
-  int ownScore = 0, opponentScore = 0;
-  int teamNumber = 0, playerNumber = 1;
-  int fieldPlayerColour = 0;
-  bool goalkeeper = false;
-  bool fromGameController = false;  // false: set by the buttons
-  double lastPacketTime = -1;        // backend time of the last accepted packet
-  std::uint8_t packetNumber = 0;
-
-  bool penalised() const { return penalty != gc::Penalty::None; }
-};
-
-// The buttons (Touch array), as the rules and the calibration challenge use them.
-enum class ButtonEvent {
-  ChestPress,                  // chest alone, pressed and released
-  StartCalibration,            // chest + head front held >= 1 s
-  StartCalibrationEvaluation,  // chest + head rear held >= 1 s
-  Unstiffen,                   // all three head buttons held >= 1 s
-};
-const char* buttonEventName(ButtonEvent e);
-
-struct ButtonState {
-  std::vector<ButtonEvent> events;  // this cycle's
-  bool chest = false, headFront = false, headMiddle = false, headRear = false;
-};
 
 class ButtonInterface {
  public:

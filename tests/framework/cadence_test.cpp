@@ -164,7 +164,7 @@ TEST(Cadences, CameraMatrixAtExposureTime) {
 
 TEST(FrameHistoryProvider, KeepsHalfASecondAndRestartsWhenTimeGoesBack) {
   ModuleHarness h = ModuleHarness::make<modules::FrameHistoryProvider>();
-  h.fix(TorsoState{});
+  h.fix(TorsoState{}).fix(Odometry{});
   SensorFrame f;
   for (int i = 0; i < 100; ++i) {
     f.time = i * kCycleTime;
@@ -179,6 +179,29 @@ TEST(FrameHistoryProvider, KeepsHalfASecondAndRestartsWhenTimeGoesBack) {
   f.time = std::nan("");
   h.fix(f).run();
   EXPECT_EQ(h.get<FrameHistory>().entries.size(), 1u);
+}
+
+TEST(FrameHistoryProvider, OdometryAtAnImageTimeIsInterpolated) {
+  // The robot turns at 1 rad/s and walks 0.2 m/s along its heading; the odometry at a time
+  // between two cycles lies on that arc (within the chord's error), and before the history's
+  // start it is the first entry's.
+  ModuleHarness h = ModuleHarness::make<modules::FrameHistoryProvider>();
+  h.fix(TorsoState{});
+  SensorFrame f;
+  auto truth = [](double t) { return Pose2(0.2 * std::sin(t), 0.2 * (1 - std::cos(t)), t); };
+  for (int i = 0; i < 20; ++i) {
+    f.time = i * kCycleTime;
+    h.fix(f).fix(Odometry{truth(f.time)}).run();
+  }
+  Pose2 p;
+  ASSERT_TRUE(h.get<FrameHistory>().odometryAt(10.5 * kCycleTime, p));
+  const Pose2 expected = truth(10.5 * kCycleTime);
+  EXPECT_NEAR(p.x, expected.x, 1e-4);
+  EXPECT_NEAR(p.y, expected.y, 1e-4);
+  EXPECT_NEAR(p.theta, expected.theta, 1e-9);
+  ASSERT_TRUE(h.get<FrameHistory>().odometryAt(-1, p));
+  EXPECT_NEAR(p.theta, 0, 1e-12);
+  EXPECT_FALSE(FrameHistory{}.odometryAt(0, p));
 }
 
 TEST(ExposureCameraMatrixProvider, InvalidWithoutHistoryOrImage) {

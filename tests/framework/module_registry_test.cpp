@@ -110,8 +110,8 @@ TEST(ModuleRegistry, BadModulesJsonIsOneLineNamingTheKey) {
 TEST(RobotProgram, OrderFollowsTheDeclarations) {
   RobotProgram program;
   // Motion in dependency order, then cognition.
-  EXPECT_EQ(program.moduleOrder(), (Names{"TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
-                                          "HeadControl", "MotionEngine", "ExposureCameraMatrixProvider", "CameraVision"}));
+  EXPECT_EQ(program.moduleOrder(), (Names{"TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "HeadControl",
+                                          "MotionEngine", "FrameHistoryProvider", "ExposureCameraMatrixProvider", "CameraVision"}));
 }
 
 TEST(RobotProgram, AProviderSwappedByConfiguration) {
