@@ -125,7 +125,10 @@ int runNao(const RunOptions& options) {
   useRealTimePriority();
   GameController gameController(gcConfig, logLine);
   NaoBackend backend(config, logLine);
-  RobotProgram program;
+  RobotProgramConfig programConfig;
+  programConfig.field = field;
+  if (options.goTo.size() == 3) programConfig.goTo = Pose2(options.goTo[0], options.goTo[1], options.goTo[2] * M_PI / 180);
+  RobotProgram program(programConfig);
   ButtonInterface buttons;
   Blackboard& bb = program.blackboard();
   // Soft while the robot tips over and for its first second on the ground; after that the

@@ -162,7 +162,7 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
         case MotionType::WalkTo:
           if (request.walkTargetId != walkTargetId_) {
             walkTargetId_ = request.walkTargetId;
-            walkTarget_ = odometry_.pose * request.walkTarget;
+            walkTarget_ = request.walkTargetInOdometry ? request.walkTarget : odometry_.pose * request.walkTarget;
             walkToStopped_ = false;
           }
           speed = walkToSpeed(walkTarget_, params_.walkToPositionTolerance, params_.walkToAngleTolerance, true);

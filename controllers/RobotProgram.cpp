@@ -1,11 +1,13 @@
 #include "controllers/RobotProgram.h"
 
+#include <chrono>
 #include <set>
 
+#include "controllers/modules/ModuleField.h"
+#include "representations/behavior/BehaviorCommand.h"
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameState.h"
-#include "representations/perception/VisionGeometry.h"
 #include "robot/ModuleRegistry.h"
 #include "robot/Paths.h"
 
@@ -17,9 +19,11 @@ template <class... T>
 struct TypeList {};
 
 // What crosses between the cadences (docs/architecture.md). Motion to cognition: the state
-// cognition interprets its images with; the calibration and the game state the app sets. Cognition to motion: the
+// cognition interprets its images with; the calibration, the game state and the operator's
+// command that the app sets. Cognition to motion: the
 // behaviour's requests.
-using MotionToCognition = TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState>;
+using MotionToCognition =
+    TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState, BehaviorCommand>;
 using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest>;
 
 template <class T>
@@ -49,18 +53,21 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   if (!config.configDir.empty()) context.configDir = config.configDir;
   context.headId = config.headId;
   if (config.motion) context.params["MotionEngine"] = *config.motion;
-  if (config.field) context.params["CameraVision"] = VisionGeometry::from(*config.field);
+  if (config.field) context.params[modules::kFieldParams] = *config.field;
 
   motionBoard_.write<CameraCalibration>() = config.calibration;
   motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand
   motionBoard_.write<HeadMotionRequest>() = HeadMotionRequest{};
   motionBoard_.write<GameState>() = GameState{};
+  motionBoard_.write<BehaviorCommand>().goTo = config.goTo;
   // Motion's inputs: what the cycle writes (backend), what the app sets (calibration, game state), and the
   // behaviour's requests: copied from cognition when a cognition module provides them, else
   // written by a scenario, a test or the app.
-  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest, GameState>();
+  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest, GameState,
+                  BehaviorCommand>();
   std::set<std::type_index> motionHas = {typeid(SensorFrame), typeid(CameraImages), typeid(CameraCalibration),
-                                         typeid(MotionRequest), typeid(HeadMotionRequest), typeid(GameState)};
+                                         typeid(MotionRequest), typeid(HeadMotionRequest), typeid(GameState),
+                                         typeid(BehaviorCommand)};
   std::set<std::type_index> cognitionHas;
   for (const std::string& name : chosenModules(providers)) {
     std::unique_ptr<ModuleBase> m = createModule(name, context);
@@ -99,6 +106,7 @@ void RobotProgram::runCognition(const CameraImage& image) {
   cognition_.update(cognitionBoard_);
   for (const auto& c : toMotion_) c.copy(cognitionBoard_, motionBoard_);
   ++cognitionRuns_[cam];
+  if (observer_) observer_(image, cognitionBoard_);
 }
 
 bool RobotProgram::cycle(Backend& backend) {
@@ -113,12 +121,22 @@ bool RobotProgram::cycle(Backend& backend) {
     else
       slot.reset();
   }
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   motion_.update(motionBoard_);
   // The answer goes out before cognition runs: an image never delays it.
   backend.sendRequest(motionBoard_.read<JointRequest>(), motionBoard_.write<LedRequest>());
+  auto last = Clock::now();
+  timing_.motionMs = std::chrono::duration<double, std::milli>(last - start).count();
+  timing_.cognitionMs.clear();
   if (!cognition_.modules().empty())
     for (const auto& img : images.latest)
-      if (img) runCognition(*img);
+      if (img) {
+        runCognition(*img);
+        const auto now = Clock::now();
+        timing_.cognitionMs.push_back(std::chrono::duration<double, std::milli>(now - last).count());
+        last = now;
+      }
   return true;
 }
 

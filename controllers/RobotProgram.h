@@ -4,6 +4,7 @@
 // provides what comes from config/modules.json, each module's parameters from
 // config/parameters/<module>.json (docs/architecture.md).
 #include <array>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -41,8 +42,16 @@ struct RobotProgramConfig {
   // The field the robot plays on (the vision's painted sizes); unset: field_dimensions.json in
   // the configuration folder.
   std::optional<FieldDimensions> field;
+  // The operator's command to the behaviour (run --goto): walk to this field pose.
+  std::optional<Pose2> goTo;
 
   static std::string defaultConfigDir();
+  // For a scenario that drives the robot itself: no behaviour module provides the motion and
+  // head requests; the scenario writes them on the motion board.
+  void withoutBehavior() {
+    providers["MotionRequest"] = "";
+    providers["HeadMotionRequest"] = "";
+  }
 };
 
 // Two cadences (docs/architecture.md): the motion pipeline runs every cycle; the cognition
@@ -71,6 +80,16 @@ class RobotProgram {
   // Cognition runs so far, per camera, and images skipped for a timestamp older than the last.
   const std::array<long, kNumCameras>& cognitionRuns() const { return cognitionRuns_; }
   long skippedImages() const { return skippedImages_; }
+  // Wall time of the last cycle's motion (pipeline and answer) and of its cognition runs (ms).
+  struct CycleTiming {
+    double motionMs = 0;
+    std::vector<double> cognitionMs;
+  };
+  const CycleTiming& lastTiming() const { return timing_; }
+  // Called after each cognition run with its image and the cognition board (a scenario's
+  // scorer reads the estimates there; it must not write).
+  using CognitionObserver = std::function<void(const CameraImage& image, const Blackboard& cognition)>;
+  void setCognitionObserver(CognitionObserver observer) { observer_ = std::move(observer); }
 
  private:
   using Copy = void (*)(const Blackboard& from, Blackboard& to);
@@ -86,6 +105,8 @@ class RobotProgram {
   std::array<long, kNumCameras> cognitionRuns_{};
   std::array<double, kNumCameras> lastImageTime_{};
   long skippedImages_ = 0;
+  CognitionObserver observer_;
+  CycleTiming timing_;
 };
 
 }  // namespace nao

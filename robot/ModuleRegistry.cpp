@@ -151,6 +151,10 @@ ProviderMap loadProviders(const std::string& path) {
 
 void overrideProviders(ProviderMap& providers, const ProviderMap& overrides, const std::string& where) {
   for (const auto& [rep, module] : overrides) {
+    if (module.empty()) {  // nobody: the representation becomes an input the caller writes
+      if (!providers.erase(rep)) throw Error(where, "providers." + rep + ": has no provider to remove");
+      continue;
+    }
     checkEntry(rep, module, where);
     providers[rep] = module;
   }

@@ -52,7 +52,8 @@ using ProviderMap = std::map<std::string, std::string>;
 ProviderMap loadProviders(const std::string& path);
 ProviderMap parseProviders(const std::string& text, const std::string& where);
 // Replaces entries of `providers` (e.g. a scenario's oracle) and checks the result again;
-// errors name `where` and the key.
+// errors name `where` and the key. An empty module name removes the entry: nobody provides the
+// representation (a scenario that drives the robot writes it).
 void overrideProviders(ProviderMap& providers, const ProviderMap& overrides, const std::string& where);
 // The modules a provider map chooses, by name, each once.
 std::vector<std::string> chosenModules(const ProviderMap& providers);

@@ -3,6 +3,7 @@
 // (or none), ground truth recorded. Used by `run --backend sim` and `bench sim`.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,8 @@
 
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
+#include "representations/modeling/BallModel.h"
+#include "representations/modeling/RobotPose.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -22,9 +25,22 @@ struct SimRunOptions {
   CameraCalibration miscalibration;            // injected into the simulated hardware
   Lighting lighting;
   bool cameras = true;
-  std::string imagesDir;                       // non-empty: PNGs of both cameras once a second + field view
+  std::string imagesDir;  // non-empty: annotated views of both cameras and a field view, once a second
+  std::optional<Pose2> goTo;                   // the behaviour's command: walk to this field pose
+  std::optional<Eigen::Vector2d> ball;         // a ball lying here (field frame)
   std::uint64_t seed = 1;
   std::function<void(double simTime)> progress;  // called about once per simulated second
+};
+
+// Once a simulated second: the truth beside the robot program's belief.
+struct SimRunSecond {
+  double t = 0;
+  Eigen::Vector3d truePose = Eigen::Vector3d::Zero();  // (x, y, theta)
+  RobotPose estimate;      // moved to this cycle by the odometry since its image
+  double positionError = -1, headingError = -1;  // m, rad; -1 while the estimate is not valid
+  std::optional<Eigen::Vector2d> trueBall;       // field frame
+  BallModel ball;
+  double ballError = -1;   // m, robot frame (the model against the truth relative to the true pose); -1: no model
 };
 
 struct SimRunResult {
@@ -38,6 +54,16 @@ struct SimRunResult {
   Eigen::Vector3d finalPose = Eigen::Vector3d::Zero();
   std::vector<std::string> imagesWritten;
   std::vector<std::string> moduleOrder;
+  std::vector<std::string> motionModules, cognitionModules;
+  // After every cognition run with a valid estimate (and after the first 2 s): its errors
+  // against the truth at that cycle (the estimate moved by the odometry since its image).
+  std::vector<double> positionErrors, headingErrors;  // m, rad
+  std::vector<double> ballErrors;                     // m, robot frame, while a ball model is valid
+  long validRuns = 0, cognitionRunsTotal = 0;
+  std::vector<SimRunSecond> seconds;
+  RobotPose finalEstimate;  // as in SimRunSecond
+  BallModel finalBall;
+  std::vector<double> motionMs, cognitionMs;  // wall time per motion cycle and per cognition run
 };
 
 SimRunResult runSim(const SimRunOptions& options);

@@ -74,6 +74,7 @@ MotionSim::MotionSim(const MotionSimOptions& o) : walkLimits_(o.params.walk) {
   backend_ = std::make_unique<SimBackend>(*world_, 0, true);
   RobotProgramConfig config;
   config.motion = o.params;
+  config.withoutBehavior();  // this scenario's MotionRequest drives the walk
   program_ = std::make_unique<RobotProgram>(config);
 }
 

@@ -80,4 +80,38 @@ cv::Mat drawFieldView(const FieldModel& field, const std::vector<Eigen::Vector3d
   return image;
 }
 
+void drawEstimates(cv::Mat& view, const FieldModel& field, const EstimateOverlay& estimate, int pixelsPerMetre) {
+  const FieldDimensions& d = field.dims;
+  const double ppm = pixelsPerMetre;
+  const double cx = d.length / 2 + d.borderStripWidth, cy = d.width / 2 + d.borderStripWidth;
+  auto px = [&](double x, double y) {
+    return cv::Point(static_cast<int>(std::lround((x + cx) * ppm * (1 << kShift))),
+                     static_cast<int>(std::lround((cy - y) * ppm * (1 << kShift))));
+  };
+  auto len = [&](double metres) { return static_cast<int>(std::lround(metres * ppm * (1 << kShift))); };
+  const cv::Scalar kEstimate(255, 230, 0), kModelBall(255, 60, 200);
+  if (estimate.pose && estimate.pose->allFinite()) {
+    const Eigen::Vector3d& r = *estimate.pose;
+    const Eigen::Matrix2d c = 0.5 * (estimate.positionCovariance + estimate.positionCovariance.transpose());
+    if (c.allFinite()) {
+      // The 2-sigma ellipse: axes along the covariance's eigenvectors.
+      const double a = c(0, 0), b = c(0, 1), e = c(1, 1);
+      const double mean = 0.5 * (a + e), diff = std::sqrt(0.25 * (a - e) * (a - e) + b * b);
+      const double major = 2 * std::sqrt(std::max(0.0, mean + diff)), minor = 2 * std::sqrt(std::max(0.0, mean - diff));
+      const double angle = 0.5 * std::atan2(2 * b, a - e) * 180 / M_PI;
+      if (major * ppm >= 1)
+        cv::ellipse(view, px(r.x(), r.y()), cv::Size(len(major), std::max(len(minor), 1)), -angle, 0, 360, kEstimate, 1,
+                    cv::LINE_AA, kShift);
+    }
+    const int radius = std::max(len(kRobotRadius), 4 << kShift);
+    cv::circle(view, px(r.x(), r.y()), radius, kEstimate, 2, cv::LINE_AA, kShift);
+    const double reach = std::max(kRobotRadius * 1.6, 8 / ppm);
+    cv::line(view, px(r.x(), r.y()), px(r.x() + reach * std::cos(r.z()), r.y() + reach * std::sin(r.z())), kEstimate, 2,
+             cv::LINE_AA, kShift);
+  }
+  if (estimate.ball && estimate.ball->allFinite())
+    cv::circle(view, px(estimate.ball->x(), estimate.ball->y()), std::max(len(0.08), 4 << kShift), kModelBall, 2,
+               cv::LINE_AA, kShift);
+}
+
 }  // namespace nao::sim

@@ -3,6 +3,7 @@
 // robots (circle + heading, numbered from 0) and balls. Field x points right, y up.
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "perception/FieldDimensions.h"
@@ -14,5 +15,15 @@ namespace nao::sim {
 // Throws nao::Error("FieldView", ...) for pixelsPerMetre outside 5..1000.
 cv::Mat drawFieldView(const FieldModel& field, const std::vector<Eigen::Vector3d>& robotPoses,
                       const std::vector<Eigen::Vector3d>& balls, int pixelsPerMetre = 80);
+
+// What the robot program believes, drawn over a drawFieldView picture of the same field and
+// scale: the estimated pose (a ring with its heading) with its 2-sigma position ellipse
+// (covariance of x, y in m^2), and the modelled ball (a ring).
+struct EstimateOverlay {
+  std::optional<Eigen::Vector3d> pose;  // (x, y, theta)
+  Eigen::Matrix2d positionCovariance = Eigen::Matrix2d::Zero();
+  std::optional<Eigen::Vector2d> ball;  // field frame
+};
+void drawEstimates(cv::Mat& view, const FieldModel& field, const EstimateOverlay& estimate, int pixelsPerMetre = 80);
 
 }  // namespace nao::sim

@@ -48,6 +48,7 @@ TEST(Cognition, TheRobotProgramSeesTheFieldLinesWhereTheyAre) {
   });
   RobotProgramConfig config;
   config.field = field;
+  config.withoutBehavior();  // the head still: what the vision sees, not where the head looks
   RobotProgram program(config);
 
   int perceptSets = 0, lines = 0, offLines = 0;

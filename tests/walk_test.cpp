@@ -309,7 +309,9 @@ TEST(RobotProgram, MotionModulesRunAndTheRobotWalks) {
   sim::World world(spec);
   world.placeRobot(0, Eigen::Vector3d::Zero(), Walk().standPosture());
   sim::SimBackend backend(world, 0);
-  RobotProgram program;
+  RobotProgramConfig config;
+  config.withoutBehavior();  // the test's MotionRequest drives the walk
+  RobotProgram program(config);
   const auto order = program.moduleOrder();
   EXPECT_NE(std::find(order.begin(), order.end(), "MotionEngine"), order.end());
   EXPECT_NE(std::find(order.begin(), order.end(), "HeadControl"), order.end());

@@ -89,6 +89,11 @@ void CommandLine::declare() {
     c.number("--seconds", r.seconds, 0.1, 86400, "s", "how long to run (nao: until stopped unless given; sim: at most 3600)");
     c.numbers("--pose", r.pose, poseElements(), "sim: the start pose (default: the calibration position)");
     c.onField("--pose", r.pose);
+    c.numbers("--goto", r.goTo, poseElements(),
+              "the behaviour walks to this field pose by the robot's own localization (default: it stands)");
+    c.onField("--goto", r.goTo);
+    c.numbers("--ball", r.ball, {{"X", "m", -20, 20}, {"Y", "m", -20, 20}}, "sim: a ball lying here (default: none)");
+    c.onField("--ball", r.ball);
     c.choice("--cameras", r.cameras, {"on", "off", "none", "v4l2"},
              "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2 (default v4l2)");
     c.outputFolder("--images", r.images, "sim: camera PNGs once a second and a field view into DIR");
@@ -103,7 +108,8 @@ void CommandLine::declare() {
     c.count("--gc-return-port", n.gcReturnPort, 1, 65535, "nao: port of the return packets");
     c.text("--gc-address", n.gcAddress, "IP", "nao: address to receive GameController packets on (default 0.0.0.0)",
            ipv4Problem);
-    c.onlyWith("--backend", "sim", r.backend, {"--seed", "--lighting", "--miscalibration", "--model", "--pose", "--images"});
+    c.onlyWith("--backend", "sim", r.backend,
+               {"--seed", "--lighting", "--miscalibration", "--model", "--pose", "--images", "--ball"});
     c.onlyWith("--backend", "nao", r.backend,
                {"--lola-socket", "--camera-top", "--camera-bottom", "--camera-settings", "--team", "--player",
                 "--gc-port", "--gc-return-port", "--gc-address"});

@@ -36,7 +36,7 @@ struct RunOptions {
   NaoRunOptions nao;
   std::string backend = "sim", cameras, images;
   double seconds = 10;
-  std::vector<double> pose;
+  std::vector<double> pose, goTo, ball;
 };
 
 struct BenchSimOptions {

@@ -1,8 +1,7 @@
 #include "controllers/modules/CameraVision.h"
 
-#include "perception/FieldDimensions.h"
+#include "controllers/modules/ModuleField.h"
 #include "robot/ModuleRegistry.h"
-#include "robot/Paths.h"
 
 namespace nao::modules {
 
@@ -11,8 +10,7 @@ namespace {
 VisionGeometry geometryFor(const ModuleContext& context) {
   if (auto it = context.params.find("CameraVision"); it != context.params.end())
     if (const auto* g = std::any_cast<VisionGeometry>(&it->second)) return *g;
-  const std::string dir = context.configDir.empty() ? dataPath("config") : context.configDir;
-  return VisionGeometry::from(FieldDimensions::load(dir + "/field_dimensions.json"));
+  return VisionGeometry::from(fieldFor(context));
 }
 
 }  // namespace

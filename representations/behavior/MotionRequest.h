@@ -27,6 +27,9 @@ struct MotionRequest {
   Pose2 walkSpeed;   // Walk: vx, vy (m/s), vtheta (rad/s), robot frame; clipped to the walk's limits
   Pose2 walkTarget;  // WalkTo: a pose in the robot frame at the time the request (its id) was made
   int walkTargetId = 0;  // a new id starts a new WalkTo (the target is taken relative to the robot then)
+  // WalkTo: walkTarget is a pose in the odometry frame (Odometry::pose) instead: a behaviour
+  // that knows the odometry at its estimate's time sends targets free of its own latency.
+  bool walkTargetInOdometry = false;
   double kickDirection = 0;  // Kick: rad, robot frame: where the ball should go
   Eigen::Vector2d ballPosition = Eigen::Vector2d(0.16, 0.05);  // Kick: the ball, robot frame (m)
   int kickId = 0;            // a new id starts a new kick

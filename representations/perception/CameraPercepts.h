@@ -17,6 +17,7 @@ struct CameraPercepts {
   CameraId camera = CameraId::Top;
   double timestamp = 0;  // s, backend clock: the image's exposure
   CameraMatrix cameraMatrix;  // at exposure time, calibrated
+  bool processed = false;     // the vision ran on the image (false: no camera matrix yet, or no pixels)
 
   std::vector<LinesPercept::Line> lines;
   std::vector<LinesPercept::Intersection> intersections;  // line1/line2 index `lines`

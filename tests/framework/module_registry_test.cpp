@@ -63,8 +63,9 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"CameraMatrixProvider", "CameraVision", "ExposureCameraMatrixProvider", "FallDetector",
-                                     "FrameHistoryProvider", "HeadControl", "MotionEngine", "TorsoMatrixProvider"}));
+  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "CameraMatrixProvider", "CameraVision",
+                                     "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider", "HeadControl",
+                                     "MotionEngine", "SelfLocalization", "TorsoMatrixProvider"}));
 }
 
 std::string providersError(const std::string& text) {
@@ -111,7 +112,23 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
   RobotProgram program;
   // Motion in dependency order, then cognition.
   EXPECT_EQ(program.moduleOrder(), (Names{"TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "HeadControl",
-                                          "MotionEngine", "FrameHistoryProvider", "ExposureCameraMatrixProvider", "CameraVision"}));
+                                          "MotionEngine", "FrameHistoryProvider", "ExposureCameraMatrixProvider", "CameraVision",
+                                          "SelfLocalization", "BallLocator", "BehaviorControl"}));
+}
+
+TEST(RobotProgram, AProviderRemovedByConfigurationBecomesAnInput) {
+  RobotProgramConfig config;
+  config.withoutBehavior();
+  const Names order = RobotProgram(config).moduleOrder();
+  EXPECT_EQ(std::find(order.begin(), order.end(), "BehaviorControl"), order.end());
+  EXPECT_NE(std::find(order.begin(), order.end(), "SelfLocalization"), order.end());
+  config.providers = {{"Nonsense", ""}};
+  try {
+    RobotProgram program(config);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "RobotProgramConfig.providers: providers.Nonsense: has no provider to remove");
+  }
 }
 
 TEST(RobotProgram, AProviderSwappedByConfiguration) {

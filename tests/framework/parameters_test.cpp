@@ -8,9 +8,12 @@
 #include <limits>
 #include <string>
 
+#include "controllers/modules/BallLocator.h"
+#include "controllers/modules/BehaviorControl.h"
 #include "controllers/modules/FallDetector.h"
 #include "controllers/modules/HeadControl.h"
 #include "controllers/modules/MotionEngineParams.h"
+#include "controllers/modules/SelfLocalization.h"
 #include "robot/Error.h"
 #include "robot/Parameters.h"
 #include "robot/Paths.h"
@@ -128,6 +131,9 @@ TEST(Parameters, CommittedFilesHoldTodaysDefaults) {
   same("FallDetector", paramsToJson(FallDetector::Params{}));
   same("HeadControl", paramsToJson(HeadControl::Params{}));
   same("MotionEngine", paramsToJson(MotionEngine::Params{}));
+  same("SelfLocalization", paramsToJson(modules::SelfLocalization::Params{}));
+  same("BallLocator", paramsToJson(modules::BallLocator::Params{}));
+  same("BehaviorControl", paramsToJson(modules::BehaviorControl::Params{}));
   // And they load without complaint to the same values.
   const auto m = loadParams<MotionEngine::Params>("MotionEngine", dir);
   EXPECT_EQ(paramsToJson(m), paramsToJson(MotionEngine::Params{}));

@@ -1,0 +1,49 @@
+#pragma once
+// Option: walk to a field pose by the self-localization. The target goes to the walk in the
+// odometry frame (as the localization's estimate maps it: RobotPose::odometry), so the walk
+// closes the loop on odometry between images and the estimate corrects it; the target is sent
+// again only when the estimate moves it by more than the re-target distance (the estimate's
+// jitter must not keep the robot stepping). Until the pose is valid the robot stands.
+#include "controllers/behavior/BehaviorInput.h"
+#include "controllers/behavior/StateMachine.h"
+#include "representations/behavior/MotionRequest.h"
+
+namespace nao::behavior {
+
+class GoToPose {
+ public:
+  struct Params {
+    double retargetFar = 0.15;        // m: re-target when the estimate moves the target this much ...
+    double retargetNear = 0.03;       // m: ... or this much within nearDistance of it
+    double retargetAngle = 0.05;      // rad
+    double nearDistance = 0.5;        // m
+    double arrivedDistance = 0.05;    // m: arrived by the estimate ...
+    double arrivedAngle = 0.06;       // rad
+  };
+  enum class State { WaitForPose, Walk, Arrived };
+
+  GoToPose() = default;
+  explicit GoToPose(const Params& params) : params_(params) {}
+  // Fills the motion request; returns true once arrived (by the estimate).
+  bool run(const BehaviorInput& in, const Pose2& target, MotionRequest& request);
+  State state() const { return machine_.state; }
+
+ private:
+  Params params_;
+  StateMachine<State> machine_{State::WaitForPose};
+  bool haveTarget_ = false;
+  Pose2 odometryTarget_;
+  int targetId_ = 0;
+};
+
+template <class V>
+void describe(V& v, GoToPose::Params& p) {
+  v("retargetFar", p.retargetFar, 0.0, 5.0);
+  v("retargetNear", p.retargetNear, 0.0, 1.0);
+  v("retargetAngle", p.retargetAngle, 0.0, 1.0);
+  v("nearDistance", p.nearDistance, 0.0, 10.0);
+  v("arrivedDistance", p.arrivedDistance, 0.0, 1.0);
+  v("arrivedAngle", p.arrivedAngle, 0.0, 1.0);
+}
+
+}  // namespace nao::behavior

@@ -1,0 +1,54 @@
+#include "controllers/modules/BallLocator.h"
+
+#include <cmath>
+
+#include "robot/ModuleRegistry.h"
+
+namespace nao::modules {
+
+namespace {
+constexpr double kBallRadius = 0.05;  // m
+}
+
+BallLocator::BallLocator(const ModuleContext& context)
+    : params_(context.load<Params>(name())), filter_(params_.filter) {}
+
+bool BallLocator::expectedInView(const Eigen::Vector2d& ball, const CameraPercepts& percepts, const Params& params) {
+  const double maxDistance =
+      percepts.camera == CameraId::Top ? params.maxExpectedDistanceTop : params.maxExpectedDistanceBottom;
+  if (!ball.allFinite() || ball.norm() > maxDistance) return false;
+  const CameraMatrix& m = percepts.cameraMatrix;
+  const auto pixel = m.project(Eigen::Vector3d(ball.x(), ball.y(), kBallRadius));
+  if (!pixel) return false;
+  const double mx = params.imageMargin * m.intrinsics.width, my = params.imageMargin * m.intrinsics.height;
+  return pixel->x() >= mx && pixel->y() >= my && pixel->x() < m.intrinsics.width - mx &&
+         pixel->y() < m.intrinsics.height - my;
+}
+
+void BallLocator::update() {
+  const CameraPercepts& percepts = in<CameraPercepts>();
+  BallInput input;
+  input.time = percepts.timestamp;
+  Pose2 odometry;
+  if (in<FrameHistory>().odometryAt(percepts.timestamp, odometry)) {
+    if (lastImageTime_ && std::abs(percepts.timestamp - *lastImageTime_) <= params_.maxImageGap)
+      if (const auto delta = odometryDelta(lastOdometry_, odometry)) input.odometryDelta = *delta;
+    lastImageTime_ = percepts.timestamp;
+    lastOdometry_ = odometry;
+  }
+  if (percepts.ball.seen) input.observations.push_back({percepts.ball.position, percepts.ball.covariance});
+  // Expected in view: where the model will be after this cycle's odometry (the filter applies
+  // it before the percepts), in this image.
+  const BallModel& before = filter_.model();
+  if (before.valid && !before.lost) {
+    const Eigen::Vector2d predicted = input.odometryDelta.inverse() * before.position;
+    input.ballExpectedInView = percepts.processed && expectedInView(predicted, percepts, params_);
+  }
+  const RobotPose& pose = in<RobotPose>();
+  if (pose.valid) input.robotPose = pose.pose;
+  out<BallModel>() = filter_.update(input);
+}
+
+NAO_REGISTER_MODULE(BallLocator);
+
+}  // namespace nao::modules

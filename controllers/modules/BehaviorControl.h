@@ -1,0 +1,54 @@
+#pragma once
+// Cognition: the behaviour. Options (controllers/behavior/, one per file, each a small state
+// machine) turn the models into the motion and head requests. The default behaviour: stand (the
+// motion engine gets up after a fall by itself), localize, look around actively, and walk to
+// the commanded field pose (BehaviorCommand::goTo) by the self-localization.
+#include <memory>
+
+#include "controllers/behavior/GoToPose.h"
+#include "controllers/behavior/LookActive.h"
+#include "representations/behavior/BehaviorCommand.h"
+#include "representations/behavior/HeadMotionRequest.h"
+#include "representations/behavior/MotionRequest.h"
+#include "representations/infrastructure/FrameHistory.h"
+#include "representations/infrastructure/GameState.h"
+#include "representations/modeling/BallModel.h"
+#include "representations/modeling/RobotPose.h"
+#include "representations/motion/MotionInfo.h"
+#include "representations/perception/FallState.h"
+#include "robot/Module.h"
+#include "robot/Parameters.h"
+
+namespace nao::modules {
+
+class BehaviorControl
+    : public Module<BehaviorControl,
+                    Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory>,
+                    Provides<MotionRequest, HeadMotionRequest>, Cadence::Cognition> {
+ public:
+  struct Params {
+    behavior::GoToPose::Params goTo;
+    behavior::LookActive::Params look;
+  };
+
+  explicit BehaviorControl(const ModuleContext& context = {});
+  const behavior::GoToPose& goTo() const { return goTo_; }
+  const behavior::LookActive& look() const { return *look_; }
+
+ private:
+  void update() override;
+
+  Params params_;
+  behavior::GoToPose goTo_;
+  std::unique_ptr<behavior::LookActive> look_;
+};
+
+}  // namespace nao::modules
+
+namespace nao {
+template <class V>
+void describe(V& v, modules::BehaviorControl::Params& p) {
+  v("goTo", p.goTo);
+  v("look", p.look);
+}
+}  // namespace nao
