@@ -12,6 +12,7 @@ void CameraPerceptsProvider::update() {
   p.camera = image.camera;
   p.timestamp = image.timestamp;
   p.cameraMatrix = in<CameraMatrix>();
+  p.processed = true;
   p.lines = in<FieldLines>().lines;
   p.intersections = in<IntersectionsPercept>().intersections;
   p.circle = in<CirclePercept>().circle;
