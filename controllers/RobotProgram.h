@@ -41,6 +41,9 @@ struct RobotProgramConfig {
   // The field the robot plays on (the vision's painted sizes); unset: field_dimensions.json in
   // the configuration folder.
   std::optional<FieldDimensions> field;
+  // Debug channels for every module and the pipelines' timing (not owned; must outlive the
+  // program); null: none. The program sets their time to each cycle's and image's.
+  DebugChannels* debug = nullptr;
 
   static std::string defaultConfigDir();
 };
@@ -55,6 +58,9 @@ class RobotProgram {
  public:
   // Throws nao::Error for a bad config/modules.json or parameter file (file and key named).
   explicit RobotProgram(const RobotProgramConfig& config = {});
+  ~RobotProgram();  // writes the `timing` summary when subscribed
+  RobotProgram(const RobotProgram&) = delete;
+  RobotProgram& operator=(const RobotProgram&) = delete;
   // One cycle: sensors and images in, motion, cognition per image, joint request out. False
   // when the backend stopped (its stopReason says why).
   bool cycle(Backend& backend);
@@ -86,6 +92,7 @@ class RobotProgram {
   std::array<long, kNumCameras> cognitionRuns_{};
   std::array<double, kNumCameras> lastImageTime_{};
   long skippedImages_ = 0;
+  DebugChannels* debug_ = nullptr;
 };
 
 }  // namespace nao

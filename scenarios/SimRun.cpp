@@ -65,6 +65,7 @@ SimRunResult runSim(const SimRunOptions& options) {
   config.calibration = calibration::CalibrationStore().offsetsFor(backend.robotInfo().headId);
   config.headId = backend.robotInfo().headId;  // config/robots/<head id>/ overlays, if any
   config.field = options.field;
+  config.debug = options.debug;
   RobotProgram program(config);
   result.moduleOrder = program.moduleOrder();
   const auto wallStart = Clock::now();

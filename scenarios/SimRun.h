@@ -10,6 +10,7 @@
 
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
+#include "robot/Debug.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -25,6 +26,7 @@ struct SimRunOptions {
   std::string imagesDir;                       // non-empty: PNGs of both cameras once a second + field view
   std::uint64_t seed = 1;
   std::function<void(double simTime)> progress;  // called about once per simulated second
+  DebugChannels* debug = nullptr;                // the robot program's debug channels (not owned); null: none
 };
 
 struct SimRunResult {
