@@ -26,6 +26,8 @@ int runCommand(const RunOptions& options) {
   o.miscalibration = miscalibrationFrom(options.sim, options.common.seed);
   o.imagesDir = options.images;
   o.seed = options.common.seed;
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
   o.progress = [&](double t) { progress("run: simulated seconds", static_cast<std::size_t>(t + 0.5), static_cast<std::size_t>(o.seconds + 0.5)); };
 
   const sim::SimRunResult r = sim::runSim(o);

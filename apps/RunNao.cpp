@@ -120,12 +120,15 @@ int runNao(const RunOptions& options) {
   if (gcConfig.team == 0) logLine("run: no --team: GameController packets will be ignored");
   // The ball classifier's weights: a missing or broken file stops the start too.
   vision::defaultBallClassifier();
+  DebugSink debug(options.debug);  // opened before LoLA: a bad --debug-out stops the start
 
   NaoBackend::installSignalHandlers();
   useRealTimePriority();
   GameController gameController(gcConfig, logLine);
   NaoBackend backend(config, logLine);
-  RobotProgram program;
+  RobotProgramConfig programConfig;
+  programConfig.debug = debug.channels();
+  RobotProgram program(programConfig);
   ButtonInterface buttons;
   Blackboard& bb = program.blackboard();
   // Soft while the robot tips over and for its first second on the ground; after that the
