@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <iostream>
 
 #include "robot/Error.h"
 #include "robot/OutputFiles.h"
@@ -17,6 +18,16 @@ void writeJson(const std::string& target, const nlohmann::json& j) {
   }
   if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
     throw RunFailure("stdout", "write failed");
+}
+
+DebugSink::DebugSink(const DebugOptions& options) {
+  if (options.channels.empty()) return;
+  if (!options.out.empty()) {
+    file_.open(options.out, std::ios::out | std::ios::trunc);
+    if (!file_) throw RunFailure(options.out, "cannot be written");
+  }
+  channels_ = std::make_unique<DebugChannels>(options.out.empty() ? static_cast<std::ostream&>(std::cerr) : file_);
+  channels_->subscribe(options.channels);
 }
 
 void progress(const std::string& what, std::size_t done, std::size_t total) {

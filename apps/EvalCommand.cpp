@@ -18,6 +18,8 @@ int evalPerceptionCommand(const EvalPerceptionOptions& options) {
   o.imagesEvery = options.imagesEvery;
   o.failuresDir = options.failures;
   o.progress = [](int done, int total) { progress("eval perception", done, total); };
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
   const sim::PerceptionEvalResult r = sim::evaluatePerception(o);
   nlohmann::json j = r.toJson();
   j["trials"] = o.trials;

@@ -1,5 +1,6 @@
 // nao-soccer modules: the robot program's modules from the registry (robot/ModuleRegistry.h),
 // with what each requires and provides and which config/modules.json chooses; --dot draws it.
+// Then the debug channels (robot/Debug.h) that --debug can subscribe.
 #include <cstdio>
 #include <set>
 #include <sstream>
@@ -39,6 +40,8 @@ int modulesCommand(const ModulesOptions& options) {
     for (const auto& m : modules)
       std::printf("%-22s %-10s %-4s %-50s %s\n", m.name.c_str(), cadenceName(m.cadence),
                   inUse.count(m.name) ? "yes" : "no", joined(m.required).c_str(), joined(m.provided).c_str());
+    std::printf("\n%-22s %s\n", "debug channel", "what --debug CHANNEL writes (JSON lines)");
+    for (const DebugChannelInfo& c : debugChannelList()) std::printf("%-22s %s\n", c.name.c_str(), c.description.c_str());
   }
   if (!options.common.json.empty()) {
     nlohmann::json list = nlohmann::json::array();
@@ -48,7 +51,10 @@ int modulesCommand(const ModulesOptions& options) {
                       {"requires", m.required},
                       {"provides", m.provided},
                       {"used", inUse.count(m.name) != 0}});
-    writeJson(options.common.json, {{"modules", list}, {"providers", providers}});
+    nlohmann::json channels = nlohmann::json::array();
+    for (const DebugChannelInfo& c : debugChannelList())
+      channels.push_back({{"name", c.name}, {"description", c.description}});
+    writeJson(options.common.json, {{"modules", list}, {"providers", providers}, {"debug_channels", channels}});
   }
   return 0;
 }

@@ -10,6 +10,7 @@
 #include "controllers/StandController.h"
 #include "perception/CameraModel.h"
 #include "perception/vision/Annotate.h"
+#include "perception/vision/CameraPipeline.h"
 #include "perception/vision/VisionPipeline.h"
 #include "robot/Error.h"
 #include "sim/ImageIO.h"
@@ -94,7 +95,12 @@ int perceiveCommand(const PerceiveOptions& options) {
   joints[HeadPitch] = head[1] * M_PI / 180;
   const CameraIntrinsics in = CameraIntrinsics::fromFovY(img.width, img.height);
   const CameraMatrix cm = computeCameraMatrix(joints, Eigen::Vector2d::Zero(), camera, CameraCalibration{}, in);
-  const VisionResult r = runVision(img, cm, geometry);
+  DebugSink debug(options.debug);
+  CameraPipelineConfig pipelineConfig;
+  pipelineConfig.debug = debug.channels();
+  CameraPipeline pipeline(camera, geometry, pipelineConfig);
+  pipeline.process(img, cm);
+  const VisionResult r = pipeline.visionResult();
   if (!options.out.empty()) sim::writePng(options.out, annotateVision(sim::rgbFromCameraImage(img), r, cm, scale));
   nlohmann::json j = resultJson(r, img, path);
   j["head_deg"] = {head[0], head[1]};

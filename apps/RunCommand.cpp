@@ -29,6 +29,8 @@ int runCommand(const RunOptions& options) {
   if (const auto& g = options.goTo; g.size() == 3) o.goTo = Pose2(g[0], g[1], g[2] * M_PI / 180);
   if (const auto& b = options.ball; b.size() == 2) o.ball = Eigen::Vector2d(b[0], b[1]);
   o.seed = options.common.seed;
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
   o.progress = [&](double t) { progress("run: simulated seconds", static_cast<std::size_t>(t + 0.5), static_cast<std::size_t>(o.seconds + 0.5)); };
 
   const sim::SimRunResult r = sim::runSim(o);

@@ -120,6 +120,7 @@ int runNao(const RunOptions& options) {
   if (gcConfig.team == 0) logLine("run: no --team: GameController packets will be ignored");
   // The ball classifier's weights: a missing or broken file stops the start too.
   vision::defaultBallClassifier();
+  DebugSink debug(options.debug);  // opened before LoLA: a bad --debug-out stops the start
 
   NaoBackend::installSignalHandlers();
   useRealTimePriority();
@@ -128,6 +129,7 @@ int runNao(const RunOptions& options) {
   RobotProgramConfig programConfig;
   programConfig.field = field;
   if (options.goTo.size() == 3) programConfig.goTo = Pose2(options.goTo[0], options.goTo[1], options.goTo[2] * M_PI / 180);
+  programConfig.debug = debug.channels();
   RobotProgram program(programConfig);
   ButtonInterface buttons;
   Blackboard& bb = program.blackboard();

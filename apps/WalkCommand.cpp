@@ -53,6 +53,7 @@ nlohmann::json runJson(const sim::WalkRunResult& r) {
 
 int walkCommand(const WalkOptions& options) {
   MotionEngine::Params params;
+  DebugSink debug(options.debug);
   if (!options.to.empty()) {
     const auto& t = options.to;
     sim::WalkToOptions o;
@@ -61,6 +62,7 @@ int walkCommand(const WalkOptions& options) {
     o.seed = options.common.seed;
     o.randomize = options.randomize;
     o.params = params;
+    o.debug = debug.channels();
     const sim::WalkToResult r = sim::runWalkTo(o);
     std::fprintf(stderr, "walk to (%.2f, %.2f, %.0f deg): %s after %.1f s, error %.1f mm, %.1f deg, %d falls\n", t[0], t[1],
                  t[2], r.reached ? "reached" : "NOT reached", r.time, r.positionError * 1000, r.angleError / kDeg, r.falls);
@@ -84,6 +86,7 @@ int walkCommand(const WalkOptions& options) {
   o.randomize = options.randomize;
   o.params = params;
   o.field = motionFieldFrom(options.common);
+  o.debug = debug.channels();
   const sim::WalkRunResult r = sim::runWalk(o);
   std::fprintf(stderr,
                "walk %.0f s: forward %.0f mm/s, sideways %.0f mm/s, turn %.1f deg/s, %.2f m walked, %d falls, "
@@ -109,6 +112,8 @@ int evalWalkCommand(const EvalMotionOptions& options) {
   o.seed = options.common.seed;
   o.randomize = options.randomize;
   o.progress = [](int done, int total) { progress("eval walk", done, total); };
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
   const sim::WalkEvalResult r = sim::evalWalk(o);
   nlohmann::json per = nlohmann::json::array();
   for (const auto& t : r.trials) per.push_back(runJson(t));

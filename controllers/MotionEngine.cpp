@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "controllers/Kinematics.h"
 #include "robot/RobotDimensions.h"
 
 namespace nao {
+
+NAO_DEBUG_CHANNEL(kWalkToTrace, "walk_to_trace",
+                  "walking to a target, every 8th cycle: the target relative to the robot (m, deg), the "
+                  "commanded speed (m/s, deg/s) and the walk's phase");
+const char* const kPhaseNames[] = {"standing", "starting", "walking", "stopping"};  // Walk::Phase
 
 namespace {
 
@@ -167,11 +170,11 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
           }
           speed = walkToSpeed(walkTarget_, params_.walkToPositionTolerance, params_.walkToAngleTolerance, true);
           stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
-          static const bool trace = std::getenv("NAO_WALKTO_TRACE") != nullptr;
-          if (trace && static_cast<int>(frame.time / kCycle) % 8 == 0) {
+          if (debug_->on(kWalkToTrace) && static_cast<int>(frame.time / kCycle) % 8 == 0) {
             const Pose2 rel = odometry_.pose.inverse() * walkTarget_;
-            std::fprintf(stderr, "t=%.2f rel %.3f %.3f %.1f speed %.3f %.3f %.1f phase %d\n", frame.time, rel.x, rel.y, rel.theta * 57.3,
-                         speed.x, speed.y, speed.theta * 57.3, static_cast<int>(walk_.phase()));
+            debug_->write(kWalkToTrace, {{"target", {rel.x, rel.y, rel.theta * 180 / M_PI}},
+                                         {"speed", {speed.x, speed.y, speed.theta * 180 / M_PI}},
+                                         {"phase", kPhaseNames[static_cast<int>(walk_.phase())]}});
           }
           break;
         case MotionType::Kick:

@@ -57,6 +57,11 @@ class MotionEngine {
   const Walk& walk() const { return walk_; }
   Walk& walk() { return walk_; }
   GetUp& getUp() { return getUp_; }  // e.g. GetUp::setFrames for experiments
+  // The channels walk_trace and walk_to_trace go to (not owned; null: none).
+  void setDebug(DebugChannels* debug) {
+    debug_ = debug ? debug : &DebugChannels::none();
+    walk_.setDebug(debug);
+  }
   const Params& params() const { return params_; }
 
  private:
@@ -71,6 +76,7 @@ class MotionEngine {
   void applyHead(JointRequest& out, const HeadJointRequest& head) const;
 
   Params params_;
+  DebugChannels* debug_ = &DebugChannels::none();
   Walk walk_;
   Kick kick_;
   GetUp getUp_;

@@ -54,6 +54,9 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   context.headId = config.headId;
   if (config.motion) context.params["MotionEngine"] = *config.motion;
   if (config.field) context.params[modules::kFieldParams] = *config.field;
+  context.debug = debug_ = config.debug;
+  motion_.setDebug(config.debug, "motion");
+  cognition_.setDebug(config.debug, "cognition");
 
   motionBoard_.write<CameraCalibration>() = config.calibration;
   motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand
@@ -86,6 +89,11 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   cognition_.sort();
 }
 
+RobotProgram::~RobotProgram() {
+  motion_.writeTimingSummary();
+  cognition_.writeTimingSummary();
+}
+
 std::vector<std::string> RobotProgram::moduleOrder() const {
   std::vector<std::string> names = motion_.order();
   for (const auto& n : cognition_.order()) names.push_back(n);
@@ -101,6 +109,7 @@ void RobotProgram::runCognition(const CameraImage& image) {
     return;
   }
   lastImageTime_[cam] = image.timestamp;
+  if (debug_) debug_->setTime(image.timestamp);
   for (const auto& c : toCognition_) c.copy(motionBoard_, cognitionBoard_);
   cognitionBoard_.write<CurrentImage>().image = image;
   cognition_.update(cognitionBoard_);
@@ -112,6 +121,7 @@ void RobotProgram::runCognition(const CameraImage& image) {
 bool RobotProgram::cycle(Backend& backend) {
   auto& frame = motionBoard_.write<SensorFrame>();
   if (!backend.waitForSensors(frame)) return false;
+  if (debug_) debug_->setTime(frame.time);
   auto& images = motionBoard_.write<CameraImages>();
   for (CameraId cam : {CameraId::Top, CameraId::Bottom}) {
     CameraImage img;

@@ -44,6 +44,9 @@ struct RobotProgramConfig {
   std::optional<FieldDimensions> field;
   // The operator's command to the behaviour (run --goto): walk to this field pose.
   std::optional<Pose2> goTo;
+  // Debug channels for every module and the pipelines' timing (not owned; must outlive the
+  // program); null: none. The program sets their time to each cycle's and image's.
+  DebugChannels* debug = nullptr;
 
   static std::string defaultConfigDir();
   // For a scenario that drives the robot itself: no behaviour module provides the motion and
@@ -64,6 +67,9 @@ class RobotProgram {
  public:
   // Throws nao::Error for a bad config/modules.json or parameter file (file and key named).
   explicit RobotProgram(const RobotProgramConfig& config = {});
+  ~RobotProgram();  // writes the `timing` summary when subscribed
+  RobotProgram(const RobotProgram&) = delete;
+  RobotProgram& operator=(const RobotProgram&) = delete;
   // One cycle: sensors and images in, motion, cognition per image, joint request out. False
   // when the backend stopped (its stopReason says why).
   bool cycle(Backend& backend);
@@ -107,6 +113,7 @@ class RobotProgram {
   long skippedImages_ = 0;
   CognitionObserver observer_;
   CycleTiming timing_;
+  DebugChannels* debug_ = nullptr;
 };
 
 }  // namespace nao

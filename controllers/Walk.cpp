@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "controllers/InertialOdometry.h"
 #include "controllers/Kinematics.h"
@@ -12,6 +10,10 @@
 #include "robot/RobotDimensions.h"
 
 namespace nao {
+
+NAO_DEBUG_CHANNEL(kWalkTrace, "walk_trace",
+                  "each step at mid-swing: the swing target in the support foot's frame (m, deg) as planned "
+                  "(nominal), moved by the DCM (adjusted) and clipped, and the applied speed (m/s, deg/s)");
 
 using Eigen::Isometry3d;
 using Eigen::Vector2d;
@@ -402,12 +404,13 @@ JointRequest Walk::update(const SensorFrame& frame, const Pose2& request, bool s
         target.x += shift.x();
         target.y += shift.y();
         swingTarget_ = clipTarget(support_, !supportLeft_, target);
-        static const bool trace = std::getenv("NAO_WALK_TRACE") != nullptr;
-        if (trace && std::abs(t_ - 0.5 * stepDuration_) < dt / 2) {
+        if (debug_->on(kWalkTrace) && std::abs(t_ - 0.5 * stepDuration_) < dt / 2) {
           const Pose2 n = support_.inverse() * nominal, a = support_.inverse() * target, c = support_.inverse() * swingTarget_;
-          std::fprintf(stderr, "t=%.3f sup%c nominal %.3f %.3f %.1f adjusted %.3f %.3f clipped %.3f %.3f | speed %.3f %.3f %.1f\n",
-                       frame.time, supportLeft_ ? 'L' : 'R', n.x, n.y, n.theta * 57.3, a.x, a.y, c.x, c.y, speed_.x, speed_.y,
-                       speed_.theta * 57.3);
+          debug_->write(kWalkTrace, {{"support", supportLeft_ ? "left" : "right"},
+                                     {"nominal", {n.x, n.y, n.theta * 180 / M_PI}},
+                                     {"adjusted", {a.x, a.y}},
+                                     {"clipped", {c.x, c.y}},
+                                     {"speed", {speed_.x, speed_.y, speed_.theta * 180 / M_PI}}});
         }
       }
       integrateModel(zmpAt(zmp, t_ + dt / 2), dt);

@@ -68,6 +68,7 @@
 
 #include "controllers/InertialOdometry.h"
 #include "representations/behavior/MotionRequest.h"
+#include "robot/Debug.h"
 #include "robot/JointRequest.h"
 #include "robot/SensorData.h"
 
@@ -148,6 +149,9 @@ class Walk {
   // torsoHeight (the walk starts and ends there). Arms hang at the sides.
   JointArray standPosture() const;
 
+  // The channels walk_trace goes to (not owned; null: none).
+  void setDebug(DebugChannels* debug) { debug_ = debug ? debug : &DebugChannels::none(); }
+
   // Starts from the stand posture: resets the model to the measured state.
   void reset(const SensorFrame& frame);
   // One cycle. speed: vx, vy, vtheta (robot frame, clipped to the limits). With a zero speed and
@@ -216,6 +220,7 @@ class Walk {
   bool closedFeet() const;
 
   Params params_;
+  DebugChannels* debug_ = &DebugChannels::none();
   double omega_ = 6.0;      // sqrt(g / COM height)
   double comHeight_ = 0.26;
   Phase phase_ = Phase::Standing;

@@ -1,10 +1,54 @@
 #include "robot/Module.h"
 
+#include <algorithm>
+#include <chrono>
 #include <map>
 
 #include "robot/Error.h"
 
 namespace nao {
+
+NAO_DEBUG_CHANNEL(kTiming, "timing",
+                  "every pipeline run: each module's update in ms (steady clock) with its cadence; at a robot "
+                  "program's end a summary per pipeline (runs, mean and maximum ms per module)");
+
+void Pipeline::setDebug(DebugChannels* debug, std::string name) {
+  debug_ = debug;
+  name_ = std::move(name);
+  for (auto& m : modules_) m->attachDebug(debug);
+}
+
+bool Pipeline::timing() const { return debug_ && debug_->on(kTiming); }
+
+void Pipeline::writeTiming(const std::vector<double>& ms) {
+  if (!timing()) return;
+  sumMs_.resize(modules_.size());
+  maxMs_.resize(modules_.size());
+  ++timedRuns_;
+  nlohmann::json modules = nlohmann::json::array();
+  double total = 0;
+  for (std::size_t i = 0; i < modules_.size() && i < ms.size(); ++i) {
+    modules.push_back({{"module", modules_[i]->name()}, {"cadence", cadenceName(modules_[i]->cadence())}, {"ms", ms[i]}});
+    total += ms[i];
+    sumMs_[i] += ms[i];
+    maxMs_[i] = std::max(maxMs_[i], ms[i]);
+  }
+  debug_->write(kTiming, {{"pipeline", name_}, {"modules", std::move(modules)}, {"total_ms", total}});
+}
+
+void Pipeline::writeTimingSummary() const {
+  if (!timing()) return;
+  nlohmann::json modules = nlohmann::json::array();
+  for (std::size_t i = 0; i < modules_.size(); ++i) {
+    const bool ran = timedRuns_ > 0 && i < sumMs_.size();
+    modules.push_back({{"module", modules_[i]->name()},
+                       {"cadence", cadenceName(modules_[i]->cadence())},
+                       {"runs", ran ? timedRuns_ : 0},
+                       {"ms_mean", ran ? sumMs_[i] / static_cast<double>(timedRuns_) : 0.0},
+                       {"ms_max", ran ? maxMs_[i] : 0.0}});
+  }
+  debug_->write(kTiming, {{"pipeline", name_}, {"summary", true}, {"runs", timedRuns_}, {"modules", std::move(modules)}});
+}
 
 void Pipeline::sort() {
   const std::string where = "module pipeline";
@@ -58,7 +102,21 @@ void Pipeline::sort() {
 
 void Pipeline::update(Blackboard& blackboard) {
   if (!sorted_) sort();
-  for (auto& m : modules_) m->execute(blackboard);
+  if (!timing()) {
+    for (auto& m : modules_) m->execute(blackboard);
+    return;
+  }
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> ms;
+  ms.reserve(modules_.size());
+  Clock::time_point last = Clock::now();
+  for (auto& m : modules_) {
+    m->execute(blackboard);
+    const Clock::time_point now = Clock::now();
+    ms.push_back(std::chrono::duration<double, std::milli>(now - last).count());
+    last = now;
+  }
+  writeTiming(ms);
 }
 
 std::vector<std::string> Pipeline::order() const {

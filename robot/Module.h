@@ -11,14 +11,20 @@
 // a mutable reference and compiles only for a T in Provides<>. The board itself is out of
 // reach, so a module cannot read or write anything it did not declare. The Pipeline orders the
 // modules from these declarations.
+//
+// Debug: a module tests debugging(kChannel) and writes debug(kChannel, [&] { return json; })
+// on a channel declared in its .cpp (NAO_DEBUG_CHANNEL, robot/Debug.h); the payload is built
+// only while the channel is subscribed.
 #include <memory>
 #include <string>
 #include <tuple>
 #include <type_traits>
 #include <typeindex>
+#include <utility>
 #include <vector>
 
 #include "robot/Blackboard.h"
+#include "robot/Debug.h"
 #include "robot/TypeName.h"
 
 namespace nao {
@@ -54,6 +60,22 @@ class ModuleBase {
   // Looks up the declared representations on this board (creating the provided ones) and
   // runs update(). A required one missing from the board throws, naming it.
   virtual void execute(Blackboard& board) = 0;
+
+  // The program's debug channels (not owned; null: none), handed over by the pipeline or
+  // createModule.
+  void attachDebug(DebugChannels* debug) { debug_ = debug ? debug : &DebugChannels::none(); }
+  DebugChannels& debugChannels() const { return *debug_; }
+
+ protected:
+  bool debugging(const DebugChannel& channel) const { return debug_->on(channel); }
+  // One line on `channel` if it is subscribed; payload() (returning nlohmann::json) runs only then.
+  template <class F>
+  void debug(const DebugChannel& channel, F&& payload) {
+    debug_->emit(channel, std::forward<F>(payload));
+  }
+
+ private:
+  DebugChannels* debug_ = &DebugChannels::none();
 };
 
 namespace detail {
@@ -117,9 +139,13 @@ class Module<Derived, Requires<R...>, Provides<P...>, C> : public ModuleBase {
 class Pipeline {
  public:
   void add(std::unique_ptr<ModuleBase> module) {
+    if (debug_) module->attachDebug(debug_);
     modules_.push_back(std::move(module));
     sorted_ = false;
   }
+  // Hands `debug` (not owned) to every module, now and when added, and writes the `timing`
+  // channel under `name` ("motion", "cognition", "vision_top"). Null: none.
+  void setDebug(DebugChannels* debug, std::string name);
   template <class... T>
   void inputs() {
     (input(RepresentationType::of<T>()), ...);
@@ -136,11 +162,22 @@ class Pipeline {
   void update(Blackboard& blackboard);
   std::vector<std::string> order() const;
   const std::vector<std::unique_ptr<ModuleBase>>& modules() const { return modules_; }
+  // Whether `timing` lines are wanted, and one line for a run that took ms[i] for modules()[i]
+  // (for a caller that runs the modules itself, as CameraPipeline does).
+  bool timing() const;
+  void writeTiming(const std::vector<double>& ms);
+  // One `timing` line with every module's runs, mean and maximum ms since subscribed; modules
+  // that never ran are listed with 0 runs (the owner writes it at the end, e.g. ~RobotProgram).
+  void writeTimingSummary() const;
 
  private:
   std::vector<std::unique_ptr<ModuleBase>> modules_;
   std::vector<RepresentationType> inputs_;
   bool sorted_ = false;
+  DebugChannels* debug_ = nullptr;
+  std::string name_;
+  long timedRuns_ = 0;
+  std::vector<double> sumMs_, maxMs_;  // per module, in order, over the timed runs
 };
 
 }  // namespace nao

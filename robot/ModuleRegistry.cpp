@@ -80,7 +80,9 @@ std::vector<ModuleInfo> registeredModules() {
 std::unique_ptr<ModuleBase> createModule(const std::string& name, const ModuleContext& context) {
   const Entry* e = find(name);
   if (!e) throw Error("module " + name, "not registered (controllers/modules/" + name + ".cpp?)");
-  return e->factory(context);
+  std::unique_ptr<ModuleBase> m = e->factory(context);
+  m->attachDebug(context.debug);
+  return m;
 }
 
 void writeModuleGraphDot(std::ostream& out, const std::vector<ModuleInfo>& modules, const ProviderMap& providers) {

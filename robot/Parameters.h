@@ -28,6 +28,8 @@
 
 namespace nao {
 
+class DebugChannels;  // robot/Debug.h
+
 class ParamReader {
  public:
   // object: the JSON object for this struct; file: named in errors; prefix: "walk." for nested ones.
@@ -121,6 +123,9 @@ struct ModuleContext {
   std::string headId;     // the robot's head id (per-robot overlay); empty: none
   // Module name -> its Params, used instead of the files (a scenario's trial parameters, tests).
   std::map<std::string, std::any> params;
+  // The program's debug channels (not owned; null: none): createModule attaches them to the
+  // module, and a module that owns helpers or pipelines of its own hands them on.
+  DebugChannels* debug = nullptr;
 
   template <class P>
   P load(const std::string& module) const {

@@ -24,6 +24,13 @@
 
 namespace nao::sim {
 
+NAO_DEBUG_CHANNEL(kEvalLines, "eval_lines",
+                  "eval perception: each true line in view the vision missed and each detected line matching no "
+                  "field line, with the trial, lighting, camera and where it lies");
+NAO_DEBUG_CHANNEL(kEvalBalls, "eval_balls",
+                  "eval perception: each ball percept, where it puts the ball on the field and whether a real ball "
+                  "lies there");
+
 namespace {
 
 constexpr double kDeg = M_PI / 180;
@@ -127,8 +134,16 @@ FrameTruth computeTruth(const World& world, CameraId camera) {
   return t;
 }
 
+// What the eval_lines and eval_balls lines name besides the camera.
+struct FrameLabel {
+  DebugChannels& debug;
+  int trial;
+  const std::string& lighting;
+};
+
 void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, const VisionResult& r,
-                const Eigen::Vector3d& robotPose, PerceptionFigures& fig) {
+                const Eigen::Vector3d& robotPose, PerceptionFigures& fig, const FrameLabel& label) {
+  DebugChannels& debug = label.debug;
   ++fig.frames;
   const FieldModel& field = world.field();
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> detected;
@@ -144,13 +159,18 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
         ok = true;
         break;
       }
-    if (!ok && std::getenv("NAO_LINESTAT")) {  // debugging aid: each miss / false line
+    if (!ok && debug.on(kEvalLines)) {
       const Eigen::Vector2d cam = world.cameraPose(0, camera).translation().head<2>();
       const Eigen::Vector2d u = (tl.to - tl.from).normalized();
       const double t = std::clamp((cam - tl.from).dot(u), 0.0, tl.visibleLength);
-      std::fprintf(stderr, "LINEMISS cam %d vis %.2f near %.2f img (%.0f,%.0f)-(%.0f,%.0f) %s\n", static_cast<int>(camera),
-                   tl.visibleLength, (tl.from + t * u - cam).norm(), tl.imageFrom.x(), tl.imageFrom.y(), tl.imageTo.x(),
-                   tl.imageTo.y(), tl.name.c_str());
+      debug.write(kEvalLines, {{"kind", "miss"},
+                               {"trial", label.trial},
+                               {"lighting", label.lighting},
+                               {"camera", cameraName(camera)},
+                               {"line", tl.name},
+                               {"visible_m", tl.visibleLength},
+                               {"nearest_m", (tl.from + t * u - cam).norm()},
+                               {"image", {{tl.imageFrom.x(), tl.imageFrom.y()}, {tl.imageTo.x(), tl.imageTo.y()}}}});
     }
   }
   // Precision over every detection, against every line of the field.
@@ -164,7 +184,7 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
         ok = true;
         break;
       }
-    if (!ok && std::getenv("NAO_LINESTAT")) {  // debugging aid: each miss / false line
+    if (!ok && debug.on(kEvalLines)) {
       double bestA = 1e9, bestD0 = 0, bestD1 = 0;
       const Eigen::Vector2d ud = (d.second - d.first).normalized();
       for (const auto& fl : field.lines) {
@@ -174,9 +194,15 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
         if (a + 20 * (d0 + d1) < bestA + 20 * (bestD0 + bestD1)) bestA = a, bestD0 = d0, bestD1 = d1;
       }
       const auto& l = r.lines.lines[di];
-      std::fprintf(stderr, "LINEFALSE cam %d dist %.2f len %.2f spots %zu angle %.1f d0 %.3f d1 %.3f img (%.0f,%.0f)-(%.0f,%.0f)\n",
-                   static_cast<int>(camera), std::min(l.from.norm(), l.to.norm()), (l.to - l.from).norm(), l.spots.size(),
-                   bestA, bestD0, bestD1, l.imageFrom.x(), l.imageFrom.y(), l.imageTo.x(), l.imageTo.y());
+      debug.write(kEvalLines, {{"kind", "false"},
+                               {"trial", label.trial},
+                               {"lighting", label.lighting},
+                               {"camera", cameraName(camera)},
+                               {"distance_m", std::min(l.from.norm(), l.to.norm())},
+                               {"length_m", (l.to - l.from).norm()},
+                               {"spots", l.spots.size()},
+                               {"nearest_line", {{"angle_deg", bestA}, {"from_m", bestD0}, {"to_m", bestD1}}},
+                               {"image", {{l.imageFrom.x(), l.imageFrom.y()}, {l.imageTo.x(), l.imageTo.y()}}}});
     }
   }
   // Circle.
@@ -221,7 +247,13 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
       if ((*seen - tb).norm() < std::max(0.3, 0.2 * dist)) matchesAny = true;
     }
     fig.falseBalls += !matchesAny;
-    if (std::getenv("NAO_BALLSTAT")) std::fprintf(stderr, "BALLSTAT %d\n", matchesAny);  // debugging aid
+    debug.emit(kEvalBalls, [&] {
+      return nlohmann::json{{"trial", label.trial},
+                            {"lighting", label.lighting},
+                            {"camera", cameraName(camera)},
+                            {"field", {seen->x(), seen->y()}},
+                            {"matches_a_ball", matchesAny}};
+    });
   }
   auto found = [&](const VisibleBall& b) {
     if (!seen) return false;
@@ -331,8 +363,11 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
     result.byLighting[l.name];
   }
   // The robot's vision: one camera pipeline per camera, built from the same modules.
-  CameraPipeline pipelines[kNumCameras] = {CameraPipeline(CameraId::Top, options.field),
-                                           CameraPipeline(CameraId::Bottom, options.field)};
+  DebugChannels& debug = options.debug ? *options.debug : DebugChannels::none();
+  CameraPipelineConfig pipelineConfig;
+  pipelineConfig.debug = options.debug;
+  CameraPipeline pipelines[kNumCameras] = {CameraPipeline(CameraId::Top, options.field, pipelineConfig),
+                                           CameraPipeline(CameraId::Bottom, options.field, pipelineConfig)};
   const FieldModel& field = world.field();
   std::mt19937_64 rng(options.seed);
   std::uniform_real_distribution<double> uni(0, 1);
@@ -387,7 +422,7 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
         const VisionResult r = pipeline.visionResult();
         result.perceptionMs.push_back(pipeline.totalMs());
         PerceptionFigures fig;
-        scoreFrame(world, camera, truth, r, robotPose, fig);
+        scoreFrame(world, camera, truth, r, robotPose, fig, {debug, trial, lighting.name});
         result.byLighting[lighting.name].add(fig);
         result.all.add(fig);
         if (!options.imagesDir.empty() && options.imagesEvery > 0 && trial % options.imagesEvery == 0) {

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "perception/FieldDimensions.h"
+#include "robot/Debug.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -35,6 +36,7 @@ struct PerceptionEvalOptions {
   std::string imagesDir;            // non-empty: annotated frames (every imagesEvery-th scene)
   int imagesEvery = 25;
   std::string failuresDir;          // non-empty: annotated frames with a miss or a false detection
+  DebugChannels* debug = nullptr;   // line_rejects, eval_lines, eval_balls, timing (not owned); null: none
   std::function<void(int done, int total)> progress;
 };
 

@@ -90,6 +90,7 @@ SimRunResult runSim(const SimRunOptions& options) {
   config.headId = backend.robotInfo().headId;  // config/robots/<head id>/ overlays, if any
   config.field = options.field;
   config.goTo = options.goTo;
+  config.debug = options.debug;
   RobotProgram program(config);
   result.moduleOrder = program.moduleOrder();
   result.motionModules = program.pipeline().order();

@@ -13,6 +13,7 @@
 #include "perception/FieldDimensions.h"
 #include "representations/modeling/BallModel.h"
 #include "representations/modeling/RobotPose.h"
+#include "robot/Debug.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -30,6 +31,7 @@ struct SimRunOptions {
   std::optional<Eigen::Vector2d> ball;         // a ball lying here (field frame)
   std::uint64_t seed = 1;
   std::function<void(double simTime)> progress;  // called about once per simulated second
+  DebugChannels* debug = nullptr;                // the robot program's debug channels (not owned); null: none
 };
 
 // Once a simulated second: the truth beside the robot program's belief.

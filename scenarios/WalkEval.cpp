@@ -14,6 +14,10 @@
 
 namespace nao::sim {
 
+NAO_DEBUG_CHANNEL(kWalkFalls, "walk_falls",
+                  "eval walk: each fall, with the trial, the seconds into the trial and into the command, the "
+                  "commanded and the applied speed (m/s, deg/s)");
+
 namespace {
 
 constexpr double kWarmup = 1.0;  // s standing before a walk starts
@@ -75,6 +79,7 @@ MotionSim::MotionSim(const MotionSimOptions& o) : walkLimits_(o.params.walk) {
   RobotProgramConfig config;
   config.motion = o.params;
   config.withoutBehavior();  // this scenario's MotionRequest drives the walk
+  config.debug = o.debug;
   program_ = std::make_unique<RobotProgram>(config);
 }
 
@@ -160,6 +165,7 @@ WalkRunResult runWalk(const WalkRunOptions& o) {
   so.randomize = o.randomize;
   so.variation = o.variation;
   so.params = o.params;
+  so.debug = o.debug;
   MotionSim sim(so);
   MotionRequest stand;
   const int warm = static_cast<int>(std::lround((so.params.transitionTime + kWarmup) / kCycleTime));
@@ -204,6 +210,7 @@ WalkEvalResult evalWalk(const WalkEvalOptions& o) {
     so.seed = seed;
     so.randomize = o.randomize;
     so.params = o.params;
+    so.debug = o.debug;
     MotionSim sim(so);
     MotionRequest request;
     const int warm = static_cast<int>(std::lround((so.params.transitionTime + kWarmup) / kCycleTime));
@@ -212,11 +219,12 @@ WalkEvalResult evalWalk(const WalkEvalOptions& o) {
     TruthTracker track;
     track.begin(sim);
     std::uniform_real_distribution<double> unit(-1, 1), hold(2, 5), u01(0, 1);
-    double nextChange = sim.time();
+    double nextChange = sim.time(), commandStart = sim.time();
     const double end = sim.time() + o.seconds;
     const Pose2 limit = sim.clipSpeed({1e3, 0, 0});
     while (sim.time() < end && !track.falls) {
       if (sim.time() >= nextChange) {
+        commandStart = sim.time();
         nextChange = sim.time() + hold(rng);
         const double kind = u01(rng);
         request.motion = MotionType::Walk;
@@ -232,11 +240,15 @@ WalkEvalResult evalWalk(const WalkEvalOptions& o) {
       }
       if (!sim.cycle(request)) throw Error("simulation", sim.stopReason());
       track.update(sim);
-      if (track.falls && std::getenv("NAO_WALK_DEBUG"))
-        std::fprintf(stderr, "trial %d fell at %.2f s (%.2f s into the command) command %.3f %.3f %.1f applied %.3f %.3f %.1f\n", t,
-                     sim.time() - (end - o.seconds), sim.time() - (nextChange - 5), request.walkSpeed.x, request.walkSpeed.y,
-                     request.walkSpeed.theta * 180 / M_PI, sim.info().walkSpeed.x,
-                     sim.info().walkSpeed.y, sim.info().walkSpeed.theta * 180 / M_PI);
+      if (track.falls && o.debug && o.debug->on(kWalkFalls)) {
+        const Pose2& c = request.walkSpeed;
+        const Pose2& a = sim.info().walkSpeed;
+        o.debug->write(kWalkFalls, {{"trial", t},
+                                    {"trial_s", sim.time() - (end - o.seconds)},
+                                    {"command_s", sim.time() - commandStart},
+                                    {"command", {c.x, c.y, c.theta * 180 / M_PI}},
+                                    {"applied", {a.x, a.y, a.theta * 180 / M_PI}}});
+      }
     }
     request = MotionRequest{};
     for (int i = 0; i < static_cast<int>(2.0 / kCycleTime) && !track.falls; ++i) {
@@ -264,6 +276,7 @@ WalkToResult runWalkTo(const WalkToOptions& o) {
   so.randomize = o.randomize;
   so.variation = o.variation;
   so.params = o.params;
+  so.debug = o.debug;
   MotionSim sim(so);
   MotionRequest request;
   const int warm = static_cast<int>(std::lround((so.params.transitionTime + kWarmup) / kCycleTime));

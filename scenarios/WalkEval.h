@@ -54,6 +54,7 @@ struct MotionSimOptions {
   MotionEngine::Params params;
   // Initial joint angles; empty = the walk's stand posture (the robot starts standing).
   std::vector<double> posture;
+  DebugChannels* debug = nullptr;  // the robot program's debug channels (not owned); null: none
 };
 
 // One robot in a world running the robot program (no cameras), one 12 ms cycle per call, the
@@ -102,6 +103,7 @@ struct WalkRunOptions {
   bool randomize = false;
   RobotVariation variation;
   MotionEngine::Params params;
+  DebugChannels* debug = nullptr;  // not owned; null: none
 };
 
 struct WalkRunResult {
@@ -130,6 +132,7 @@ struct WalkEvalOptions {
   bool randomize = false;
   RobotVariation variation;
   MotionEngine::Params params;
+  DebugChannels* debug = nullptr;  // not owned; null: none
   std::function<void(int done, int total)> progress;
 };
 
@@ -151,6 +154,7 @@ struct WalkToOptions {
   bool randomize = false;
   RobotVariation variation;
   MotionEngine::Params params;
+  DebugChannels* debug = nullptr;  // not owned; null: none
 };
 
 struct WalkToResult {

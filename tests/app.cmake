@@ -7,3 +7,6 @@ nao_add_test(cli_contract_test SOURCES cli_contract_test.cpp LIBS nao_cli TIMEOU
 add_dependencies(cli_contract_test nao-soccer)
 nao_add_test(cli_json_test SOURCES cli_json_test.cpp LIBS nao_cli TIMEOUT 900)
 add_dependencies(cli_json_test nao-soccer)
+# --debug on the commands: timing, walk_trace, refusals, stdout kept for the JSON.
+nao_add_test(debug_channels_test SOURCES debug_channels_test.cpp LIBS nao_robot TIMEOUT 600)
+add_dependencies(debug_channels_test nao-soccer)

@@ -1,6 +1,7 @@
 # Module framework: pipeline order, the module registry and config/modules.json, parameters
 # from files, each module alone through the harness (tests/support/ModuleHarness.h).
 nao_add_test(pipeline_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/framework/pipeline_test.cpp LIBS nao_robot TIMEOUT 60)
+nao_add_test(debug_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/framework/debug_test.cpp LIBS nao_robot TIMEOUT 60)
 nao_add_test(parameters_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/framework/parameters_test.cpp LIBS nao_controllers TIMEOUT 60)
 nao_add_test(module_registry_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/framework/module_registry_test.cpp
              LIBS nao_controllers TIMEOUT 60)

@@ -43,7 +43,8 @@ if(NAO_FUZZ)
   nao_fuzz_target(gamecontroller_fuzz fuzz/gamecontroller_fuzz.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp)
   # The declared command line (apps/cli/): argv words from the fuzzer, parsed, never run.
   nao_fuzz_target(argv_fuzz fuzz/argv_fuzz.cpp ${CMAKE_SOURCE_DIR}/apps/cli/CommandLine.cpp
-                  ${CMAKE_SOURCE_DIR}/apps/cli/Declarations.cpp ${CMAKE_SOURCE_DIR}/robot/OutputFiles.cpp)
+                  ${CMAKE_SOURCE_DIR}/apps/cli/Declarations.cpp ${CMAKE_SOURCE_DIR}/robot/OutputFiles.cpp
+                  ${CMAKE_SOURCE_DIR}/robot/Debug.cpp)
   find_package(CLI11 REQUIRED CONFIG)
   target_link_libraries(argv_fuzz PRIVATE CLI11::CLI11 nlohmann_json::nlohmann_json)
   target_compile_definitions(argv_fuzz PRIVATE NAO_SOURCE_DIR="${CMAKE_SOURCE_DIR}")

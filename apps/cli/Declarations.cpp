@@ -9,6 +9,7 @@
 
 #include "apps/cli/CommandLine.h"
 #include "apps/cli/Options.h"
+#include "robot/Debug.h"
 #include "robot/JointLimits.h"
 #include "robot/OutputFiles.h"
 #include "robot/Paths.h"
@@ -60,6 +61,18 @@ void seedJsonField(Command& c) {
 
 std::string pathProblem(const std::string& s) { return s.empty() ? "an empty path" : ""; }
 
+// --debug and --debug-out (robot/Debug.h): the names are checked against the declared channels
+// before the run.
+void debugOptions(Command& c, DebugOptions& d) {
+  std::string names;
+  for (const DebugChannelInfo& channel : debugChannelList()) names += (names.empty() ? "" : ", ") + channel.name;
+  auto* channels = c.text("--debug", d.channels, "CHANNEL[,CHANNEL]",
+                          "write these debug channels as JSON lines: " + names +
+                              " (`nao-soccer modules` says what each holds)",
+                          debugChannelsProblem);
+  c.outputFile("--debug-out", d.out, "where --debug writes (default stderr)")->needs(channels);
+}
+
 }  // namespace
 
 void CommandLine::declare() {
@@ -97,6 +110,7 @@ void CommandLine::declare() {
     c.choice("--cameras", r.cameras, {"on", "off", "none", "v4l2"},
              "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2 (default v4l2)");
     c.outputFolder("--images", r.images, "sim: camera PNGs once a second and a field view into DIR");
+    debugOptions(c, r.debug);
     NaoRunOptions& n = r.nao;
     c.text("--lola-socket", n.lolaSocket, "PATH", "nao: LoLA's Unix socket (default /tmp/robocup)", pathProblem);
     c.text("--camera-top", n.cameraTop, "DEV", "nao: top camera device (default /dev/video-top)", pathProblem);
@@ -158,6 +172,7 @@ void CommandLine::declare() {
     c.size("--size", p.width, p.height, "size of a raw YUYV file (default: from its length)");
     c.outputFile("--out", p.out, "write the annotated image (PNG)");
     c.count("--scale", p.scale, 1, 8, "scale of the annotated image");
+    debugOptions(c, p.debug);
   }
   {
     CLI::App* eval = group("eval", "accuracy against the simulator's truth over many random cases");
@@ -170,6 +185,7 @@ void CommandLine::declare() {
     c.outputFolder("--images", p.images, "write annotated frames to DIR");
     c.count("--images-every", p.imagesEvery, 1, 10000, "annotate every N-th scene")->needs("--images");
     c.outputFolder("--failures", p.failures, "write frames with a miss or a false detection to DIR");
+    debugOptions(c, p.debug);
 
     EvalCalibrationOptions& k = o.evalCalibration;
     Command& ck = leaf(eval, "calibration", "random offsets, placements and lightings: errors against the injected truth", k.common);
@@ -189,6 +205,7 @@ void CommandLine::declare() {
     cw.count("--trials", w.trials, 1, 1000, "trials");
     cw.number("--seconds", w.seconds, 1, 600, "s", "seconds per trial");
     cw.flag("--randomize", w.randomize, randomize);
+    debugOptions(cw, w.debug);
 
     EvalMotionOptions& t = o.evalWalkTo;
     Command& ct = leaf(eval, "walk-to", "walk to targets 3 m away on odometry alone: final error against the truth", t.common);
@@ -223,6 +240,7 @@ void CommandLine::declare() {
         ->excludes(vy)
         ->excludes(vt)
         ->excludes(secs);
+    debugOptions(c, w.debug);
   }
   {
     KickOptions& k = o.kick;

@@ -16,6 +16,12 @@ struct SimOptions {
   std::string model;                    // "" = models/nao_v6.xml
 };
 
+// --debug CHANNEL[,CHANNEL] and --debug-out FILE (robot/Debug.h).
+struct DebugOptions {
+  std::string channels;  // "" = none
+  std::string out;       // "" = stderr
+};
+
 struct RenderOptions {
   CommonOptions common;
   SimOptions sim;
@@ -37,6 +43,7 @@ struct RunOptions {
   std::string backend = "sim", cameras, images;
   double seconds = 10;
   std::vector<double> pose, goTo, ball;
+  DebugOptions debug;
 };
 
 struct BenchSimOptions {
@@ -64,6 +71,7 @@ struct PerceiveOptions {
   std::vector<double> head;
   int width = 0, height = 0;  // of a raw YUYV file; 0: from its length
   int scale = 1;
+  DebugOptions debug;
 };
 
 struct EvalPerceptionOptions {
@@ -71,6 +79,7 @@ struct EvalPerceptionOptions {
   std::string lighting = "sweep", images, failures;
   int trials = 300, imagesEvery = 25;
   double maxOffset = 1;
+  DebugOptions debug;
 };
 
 struct EvalCalibrationOptions {
@@ -85,6 +94,7 @@ struct EvalMotionOptions {  // eval walk, walk-to, getup
   int trials = 20;
   double seconds = 60;
   bool randomize = false;
+  DebugOptions debug;  // eval walk only
 };
 
 struct WalkOptions {
@@ -92,6 +102,7 @@ struct WalkOptions {
   double vx = 0, vy = 0, vtheta = 0, seconds = 10;
   std::vector<double> to;
   bool randomize = false;
+  DebugOptions debug;
 };
 
 struct KickOptions {

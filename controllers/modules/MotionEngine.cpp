@@ -4,7 +4,9 @@
 
 namespace nao::modules {
 
-MotionEngine::MotionEngine(const ModuleContext& context) : engine_(context.load<nao::MotionEngine::Params>(name())) {}
+MotionEngine::MotionEngine(const ModuleContext& context) : engine_(context.load<nao::MotionEngine::Params>(name())) {
+  engine_.setDebug(context.debug);
+}
 
 void MotionEngine::update() {
   out<JointRequest>() =

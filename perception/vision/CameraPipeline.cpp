@@ -61,6 +61,8 @@ CameraPipeline::CameraPipeline(CameraId camera, const VisionGeometry& geometry, 
   ModuleContext context;
   if (!config.configDir.empty()) context.configDir = config.configDir;
   context.headId = config.headId;
+  context.debug = debug_ = config.debug;
+  pipeline_.setDebug(config.debug, std::string("vision_") + cameraName(camera));
   board_.write<VisionGeometry>() = geometry_;
   pipeline_.inputs<CameraImage, CameraMatrix, VisionGeometry>();
   for (const std::string& name : chosenModules(providers)) {
@@ -89,6 +91,7 @@ const CameraPercepts& CameraPipeline::process(const CameraImage& image, const Ca
     totalMs_ = 0;
     return percepts_;
   }
+  if (debug_) debug_->setTime(image.timestamp);
   board_.write<CameraImage>() = image;
   board_.write<CameraMatrix>() = cm;
   Clock::time_point last = Clock::now();
@@ -97,6 +100,11 @@ const CameraPercepts& CameraPipeline::process(const CameraImage& image, const Ca
     const Clock::time_point now = Clock::now();
     moduleMs_.push_back({module->name(), msBetween(last, now)});
     last = now;
+  }
+  if (pipeline_.timing()) {
+    std::vector<double> ms;
+    for (const ModuleTime& t : moduleMs_) ms.push_back(t.ms);
+    pipeline_.writeTiming(ms);
   }
   processed_ = true;
   percepts_ = board_.read<CameraPercepts>();

@@ -33,6 +33,7 @@ struct CameraPipelineConfig {
   std::string configDir;  // holds camera_modules.json and parameters/; empty: the installed config/
   std::string headId;     // per-robot parameter overlay; empty: none
   ProviderMap providers;  // representation -> module, replacing config/camera_modules.json's choice
+  DebugChannels* debug = nullptr;  // for the modules and `timing` (as "vision_top"/"vision_bottom"); not owned
 };
 
 class CameraPipeline {
@@ -81,6 +82,7 @@ class CameraPipeline {
   std::vector<ModuleTime> moduleMs_;
   double totalMs_ = 0;
   bool processed_ = false;  // the board holds the modules' results of a valid image
+  DebugChannels* debug_ = nullptr;
 };
 
 }  // namespace nao

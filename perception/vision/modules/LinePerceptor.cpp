@@ -1,12 +1,12 @@
 #include "perception/vision/modules/LinePerceptor.h"
 
-#include <cstdio>
-#include <cstdlib>
-
 #include "perception/vision/LineDetector.h"
 #include "robot/ModuleRegistry.h"
 
 namespace nao::modules {
+
+NAO_DEBUG_CHANNEL(kLineRejects, "line_rejects",
+                  "each line candidate the line fit dropped: image end points, spots, the failed test and its value");
 
 LinePerceptor::LinePerceptor(const ModuleContext&) {}
 
@@ -15,16 +15,19 @@ void LinePerceptor::update() {
   vision::LineParams params;
   params.lineWidth = geometry.lineWidth;
   params.circleRadius = geometry.circleRadius;
-  // Debugging aid (NAO_LINEDEBUG=1): why each line candidate was dropped. Read once, not per frame.
-  static const bool lineDebug = std::getenv("NAO_LINEDEBUG") != nullptr;
+  const bool rejects = debugging(kLineRejects);
   std::vector<vision::RejectedLine> rejected;
   out<FieldLines>().lines = vision::fitLines(in<LineSpots>(), in<CirclePercept>().spotsOnCircle, in<CameraImage>(),
                                              in<FieldColourReference>(), in<ObstaclesPercept>(), in<CameraMatrix>(),
-                                             params, lineDebug ? &rejected : nullptr);
-  if (lineDebug)
-    for (const auto& x : rejected)
-      std::fprintf(stderr, "REJECT (%.0f,%.0f)-(%.0f,%.0f) spots %d %s %.3f\n", x.imageFrom.x(), x.imageFrom.y(),
-                   x.imageTo.x(), x.imageTo.y(), x.spots, x.reason, x.value);
+                                             params, rejects ? &rejected : nullptr);
+  for (const auto& x : rejected)
+    debug(kLineRejects, [&] {
+      return nlohmann::json{{"camera", cameraName(in<CameraImage>().camera)},
+                            {"image", {{x.imageFrom.x(), x.imageFrom.y()}, {x.imageTo.x(), x.imageTo.y()}}},
+                            {"spots", x.spots},
+                            {"reason", x.reason},
+                            {"value", x.value}};
+    });
 }
 
 NAO_REGISTER_MODULE(LinePerceptor);
