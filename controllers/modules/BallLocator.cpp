@@ -8,6 +8,7 @@ namespace nao::modules {
 
 namespace {
 constexpr double kBallRadius = 0.05;  // m
+NAO_DEBUG_CHANNEL(kBallModel, "ball_model", "per image: the percept, whether the ball was expected in view, the model and its hypotheses");
 }
 
 BallLocator::BallLocator(const ModuleContext& context)
@@ -46,7 +47,23 @@ void BallLocator::update() {
   }
   const RobotPose& pose = in<RobotPose>();
   if (pose.valid) input.robotPose = pose.pose;
-  out<BallModel>() = filter_.update(input);
+  const BallModel& model = out<BallModel>() = filter_.update(input);
+  debug(kBallModel, [&] {
+    nlohmann::json hyps = nlohmann::json::array();
+    for (const auto& h : filter_.hypotheses())
+      hyps.push_back({{"rolling", h.rolling}, {"x", {h.x[0], h.x[1], h.x[2], h.x[3]}}, {"measurements", h.measurements}});
+    return nlohmann::json{{"camera", cameraName(percepts.camera)},
+                          {"percept", percepts.ball.seen ? nlohmann::json{percepts.ball.position.x(), percepts.ball.position.y()}
+                                                         : nlohmann::json()},
+                          {"expected_in_view", input.ballExpectedInView},
+                          {"valid", model.valid},
+                          {"lost", model.lost},
+                          {"rolling", model.rolling},
+                          {"position", {model.position.x(), model.position.y()}},
+                          {"velocity", {model.velocity.x(), model.velocity.y()}},
+                          {"end", {model.endPosition.x(), model.endPosition.y()}},
+                          {"hypotheses", hyps}};
+  });
 }
 
 NAO_REGISTER_MODULE(BallLocator);

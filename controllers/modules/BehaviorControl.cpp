@@ -5,6 +5,28 @@
 
 namespace nao::modules {
 
+namespace {
+NAO_DEBUG_CHANNEL(kBehavior, "behavior", "per image: the options' states, the motion request and where the head looks");
+
+const char* goToStateName(behavior::GoToPose::State s) {
+  switch (s) {
+    case behavior::GoToPose::State::WaitForPose: return "wait_for_pose";
+    case behavior::GoToPose::State::Walk: return "walk";
+    case behavior::GoToPose::State::Arrived: return "arrived";
+  }
+  return "?";
+}
+const char* lookStateName(behavior::LookActive::State s) {
+  switch (s) {
+    case behavior::LookActive::State::Sweep: return "sweep";
+    case behavior::LookActive::State::LookAtFeature: return "look_at_feature";
+    case behavior::LookActive::State::TrackBall: return "track_ball";
+    case behavior::LookActive::State::Glance: return "glance";
+  }
+  return "?";
+}
+}  // namespace
+
 BehaviorControl::BehaviorControl(const ModuleContext& context)
     : params_(context.load<Params>(name())),
       goTo_(params_.goTo),
@@ -22,7 +44,15 @@ void BehaviorControl::update() {
   MotionRequest& motion = out<MotionRequest>();
   if (input.command.goTo) goTo_.run(input, *input.command.goTo, motion);
   else motion = MotionRequest{};  // stand
-  look_->run(input, out<HeadMotionRequest>());
+  HeadMotionRequest& head = out<HeadMotionRequest>();
+  look_->run(input, head);
+  debug(kBehavior, [&] {
+    return nlohmann::json{{"go_to", input.command.goTo ? goToStateName(goTo_.state()) : "none"},
+                          {"look", lookStateName(look_->state())},
+                          {"motion", motionTypeName(motion.motion)},
+                          {"walk_target", {motion.walkTarget.x, motion.walkTarget.y, motion.walkTarget.theta}},
+                          {"head_point", {head.point.x(), head.point.y()}}};
+  });
 }
 
 NAO_REGISTER_MODULE(BehaviorControl);

@@ -7,6 +7,19 @@ namespace nao::modules {
 
 namespace {
 
+NAO_DEBUG_CHANNEL(kVisionSkips, "vision_skips", "images the vision did not process, with the reason (no camera matrix, no pixels, an implausible camera matrix)");
+
+// A camera matrix no standing or walking NAO can have (a bad joint reading, a broken
+// calibration): the percepts from it would be garbage for every model downstream.
+std::string implausible(const CameraMatrix& m) {
+  const Eigen::Matrix3d r = m.pose.linear();
+  if (!r.allFinite() || !m.pose.translation().allFinite()) return "camera matrix not finite";
+  if ((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() > 1e-3) return "camera rotation not orthonormal";
+  const double z = m.pose.translation().z();
+  if (z < 0.15 || z > 1.0) return "camera " + std::to_string(z) + " m above the ground";
+  return {};
+}
+
 VisionGeometry geometryFor(const ModuleContext& context) {
   if (auto it = context.params.find("CameraVision"); it != context.params.end())
     if (const auto* g = std::any_cast<VisionGeometry>(&it->second)) return *g;
@@ -29,8 +42,12 @@ void CameraVision::update() {
   const CameraImage& image = in<CurrentImage>().image;
   const ImageCameraMatrix& m = in<ImageCameraMatrix>();
   CameraPercepts& out = this->out<CameraPercepts>();
-  if (!m.valid || !image.valid() || m.camera != image.camera) {
-    // Nothing seen (no motion cycle yet, or an empty image): still this image's percept set.
+  std::string problem = !m.valid || m.camera != image.camera ? "no camera matrix for the image's time"
+                        : !image.valid()                     ? "no pixels"
+                                                             : implausible(m.matrix);
+  if (!problem.empty()) {
+    // Nothing seen: still this image's percept set, marked not processed.
+    debug(kVisionSkips, [&] { return nlohmann::json{{"camera", cameraName(image.camera)}, {"reason", problem}}; });
     out = CameraPercepts{};
     out.camera = image.camera;
     out.timestamp = image.timestamp;

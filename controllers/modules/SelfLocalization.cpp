@@ -9,6 +9,9 @@ namespace nao::modules {
 
 namespace {
 
+NAO_DEBUG_CHANNEL(kLocalization, "localization",
+                  "per image: the estimate, every hypothesis (mean, sigma, score) and the filter's counters; skipped images with the reason");
+
 // The body's turn rate at time t from the odometry (rad/s): feature resets are refused while
 // it turns fast (the image is smeared and its time uncertain).
 double turnRate(const FrameHistory& history, double t) {
@@ -44,17 +47,28 @@ void SelfLocalization::update() {
   Pose2 odometry;
   if (game.penalised() || !std::isfinite(percepts.timestamp) ||
       !in<FrameHistory>().odometryAt(percepts.timestamp, odometry)) {
-    if (!game.penalised()) ++skippedImages_;
+    if (!game.penalised()) {
+      ++skippedImages_;
+      debug(kLocalization, [&] {
+        return nlohmann::json{{"skipped", std::isfinite(percepts.timestamp) ? "no odometry history" : "image time not finite"}};
+      });
+    }
     const RobotPose last = pose;
     pose = locator_.estimate();
     pose.time = last.time;
     pose.odometry = last.odometry;
     return;
   }
-  if (lastImageTime_ && std::abs(percepts.timestamp - *lastImageTime_) <= params_.maxImageGap)
-    if (const auto delta = odometryDelta(lastOdometry_, odometry)) locator_.applyOdometry(*delta);
-  lastImageTime_ = percepts.timestamp;
-  lastOdometry_ = odometry;
+  if (!std::isfinite(odometry.x) || !std::isfinite(odometry.y) || !std::isfinite(odometry.theta)) {
+    // A broken odometry reading: no step this image; the next good one steps from the last good.
+    ++skippedOdometry_;
+    debug(kLocalization, [&] { return nlohmann::json{{"skipped", "odometry not finite"}}; });
+  } else {
+    if (lastImageTime_ && std::abs(percepts.timestamp - *lastImageTime_) <= params_.maxImageGap)
+      if (const auto delta = odometryDelta(lastOdometry_, odometry)) locator_.applyOdometry(*delta);
+    lastImageTime_ = percepts.timestamp;
+    lastOdometry_ = odometry;
+  }
 
   FieldPercepts field;
   field.time = percepts.timestamp;
@@ -62,8 +76,28 @@ void SelfLocalization::update() {
   field.uncertainty = percepts.camera == CameraId::Top ? params_.top : params_.bottom;
   locator_.applyPercepts(field, turnRate(in<FrameHistory>(), percepts.timestamp));
   pose = locator_.estimate();
-  pose.time = percepts.timestamp;
-  pose.odometry = odometry;
+  // The time and odometry the estimate belongs to (the last good reading's, if this one was not).
+  pose.time = lastImageTime_.value_or(percepts.timestamp);
+  pose.odometry = lastOdometry_;
+  debug(kLocalization, [&] {
+    nlohmann::json hyps = nlohmann::json::array();
+    for (const auto& h : locator_.hypotheses())
+      hyps.push_back({{"mean", {h.mean.x(), h.mean.y(), h.mean.z()}},
+                      {"sigma", {std::sqrt(h.cov(0, 0)), std::sqrt(h.cov(1, 1)), std::sqrt(h.cov(2, 2))}},
+                      {"score", h.score},
+                      {"age", h.age}});
+    const auto& st = locator_.stats();
+    return nlohmann::json{{"camera", cameraName(percepts.camera)},
+                          {"pose", {pose.pose.x, pose.pose.y, pose.pose.theta}},
+                          {"valid", pose.valid},
+                          {"quality", pose.quality},
+                          {"sigma_m", pose.sigmaTranslation()},
+                          {"hypotheses", hyps},
+                          {"lines", percepts.lines.size()},
+                          {"stats", {{"skipped_odometry", st.skippedOdometry}, {"skipped_percepts", st.skippedPercepts},
+                                     {"candidates", st.candidates}, {"resets", st.resets},
+                                     {"reinitialisations", st.reinitialisations}}}};
+  });
 }
 
 NAO_REGISTER_MODULE(SelfLocalization);

@@ -97,6 +97,7 @@ class SelfLocalization
   explicit SelfLocalization(const ModuleContext& context = {});
   const SelfLocator& locator() const { return locator_; }
   long skippedImages() const { return skippedImages_; }
+  long skippedOdometry() const { return skippedOdometry_; }
 
  private:
   void update() override;
@@ -108,7 +109,8 @@ class SelfLocalization
   Pose2 lastOdometry_;
   bool started_ = false;
   bool wasPenalised_ = false;
-  long skippedImages_ = 0;  // without a usable time or odometry
+  long skippedImages_ = 0;    // without a usable time or odometry history
+  long skippedOdometry_ = 0;  // with a non-finite odometry reading at the image's time
 };
 
 }  // namespace modules

@@ -1,0 +1,316 @@
+// The modeling and behaviour modules of the robot program, each alone in the module harness
+// with inputs made from a known truth: SelfLocalization, BallLocator, BehaviorControl (its
+// GoToPose and LookActive options).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "controllers/behavior/LookActive.h"
+#include "controllers/modules/BallLocator.h"
+#include "controllers/modules/BehaviorControl.h"
+#include "controllers/modules/SelfLocalization.h"
+#include "perception/CameraModel.h"
+#include "robot/Paths.h"
+#include "tests/support/ModuleHarness.h"
+
+namespace nao {
+namespace {
+
+using testing::ModuleHarness;
+
+const FieldModel& field() {
+  static const FieldModel f = FieldModel::from(FieldDimensions::load(dataPath("config/field_dimensions.json")));
+  return f;
+}
+
+ModuleContext fieldContext() {
+  ModuleContext c;
+  c.params["FieldDimensions"] = field().dims;
+  return c;
+}
+
+// The field lines a robot at `pose` would see ahead (0.3-3.5 m, +-60 deg), robot frame, with
+// noise: the longest visible run of each line, sampled every 5 cm.
+std::vector<LinesPercept::Line> visibleLines(const Pose2& pose, std::mt19937& rng, double noise = 0.01) {
+  std::normal_distribution<double> n(0, noise);
+  std::vector<LinesPercept::Line> out;
+  for (const FieldLine& fl : field().lines) {
+    const double length = (fl.to - fl.from).norm();
+    const int steps = std::max(2, static_cast<int>(length / 0.05));
+    int bestStart = -1, bestEnd = -1, start = -1;
+    for (int k = 0; k <= steps + 1; ++k) {
+      bool visible = false;
+      if (k <= steps) {
+        const Eigen::Vector2d rel = pose.inverse() * (fl.from + (fl.to - fl.from) * (double(k) / steps));
+        visible = rel.norm() > 0.3 && rel.norm() < 3.5 && std::abs(std::atan2(rel.y(), rel.x())) < 1.05;
+      }
+      if (visible && start < 0) start = k;
+      if (!visible && start >= 0) {
+        if (k - 1 - start > bestEnd - bestStart) bestStart = start, bestEnd = k - 1;
+        start = -1;
+      }
+    }
+    if (bestStart < 0 || (bestEnd - bestStart) * length / steps < 0.4) continue;
+    LinesPercept::Line l;
+    l.imageFrom = l.imageTo = Eigen::Vector2d::Zero();
+    l.from = pose.inverse() * (fl.from + (fl.to - fl.from) * (double(bestStart) / steps)) + Eigen::Vector2d(n(rng), n(rng));
+    l.to = pose.inverse() * (fl.from + (fl.to - fl.from) * (double(bestEnd) / steps)) + Eigen::Vector2d(n(rng), n(rng));
+    out.push_back(l);
+  }
+  return out;
+}
+
+// A motion-side history with the odometry reading `odometry` from time t - 0.1 to t.
+FrameHistory historyAt(double t, const Pose2& odometry) {
+  FrameHistory h;
+  for (int i = 0; i <= 8; ++i) {
+    FrameHistory::Entry e;
+    e.time = t - 0.1 + i * 0.0125;
+    e.odometry = odometry;
+    h.entries.push_back(e);
+  }
+  return h;
+}
+
+CameraPercepts perceptsAt(double t, CameraId camera = CameraId::Top) {
+  CameraPercepts p;
+  p.camera = camera;
+  p.timestamp = t;
+  p.processed = true;
+  return p;
+}
+
+// The robot walks a square loop in its own half (starting from the side line, where the game
+// situation says it enters), odometry 5 % long; the module sees the lines ahead every image.
+TEST(SelfLocalizationModule, FollowsARobotFromTheSideLineWithItsOdometryAndLines) {
+  ModuleHarness h("SelfLocalization", fieldContext());
+  std::mt19937 rng(5);
+  Pose2 truth(-2.0, -3.0, M_PI / 2), odometry;
+  h.fix(GameState{});
+  int images = 0, valid = 0;
+  double worst = 0;
+  const Pose2 step(0.006, 0, 0.002);  // per image: 0.18 m/s, 3.4 deg/s
+  for (int i = 0; i < 900; ++i) {
+    const double t = i / 30.0;
+    truth = truth * step;
+    odometry = odometry * Pose2(step.x * 1.05, step.y, step.theta);
+    CameraPercepts p = perceptsAt(t);
+    p.lines = visibleLines(truth, rng);
+    h.fix(p).fix(historyAt(t, odometry)).run();
+    const RobotPose& pose = h.get<RobotPose>();
+    ASSERT_TRUE(std::isfinite(pose.pose.x) && std::isfinite(pose.pose.theta));
+    EXPECT_EQ(pose.time, t);
+    ++images;
+    if (i < 60 || !pose.valid) continue;
+    ++valid;
+    worst = std::max(worst, (pose.pose.translation() - truth.translation()).norm());
+  }
+  EXPECT_GT(valid, images * 8 / 10);
+  EXPECT_LT(worst, 0.15) << "the estimate left the truth";
+}
+
+TEST(SelfLocalizationModule, BadInputsAreSkippedAndTheFilterStaysFinite) {
+  ModuleHarness h("SelfLocalization", fieldContext());
+  std::mt19937 rng(7);
+  const Pose2 truth(-2.0, -3.0, M_PI / 2);
+  h.fix(GameState{});
+  auto& module = dynamic_cast<const modules::SelfLocalization&>(h.module());
+  for (int i = 0; i < 120; ++i) {
+    const double t = i / 30.0;
+    CameraPercepts p = perceptsAt(t);
+    p.lines = visibleLines(truth, rng);
+    Pose2 odometry;
+    if (i == 50) odometry = Pose2(std::nan(""), 0, 0);           // a NaN odometry step
+    if (i == 60) odometry = Pose2(0, 0, std::numeric_limits<double>::infinity());
+    if (i == 70) p.timestamp = std::nan("");                      // an image without a time
+    if (i == 80) p.timestamp = 0.5;                               // older than the last
+    if (i == 90) p.lines[0].from = Eigen::Vector2d(std::nan(""), 1);  // a NaN percept
+    if (i == 95) h.fix(FrameHistory{});                           // no history (no motion yet)
+    else h.fix(historyAt(p.timestamp, odometry));
+    h.fix(p).run();
+    const RobotPose& pose = h.get<RobotPose>();
+    ASSERT_TRUE(pose.covariance.allFinite() && std::isfinite(pose.pose.x) && std::isfinite(pose.pose.y) &&
+                std::isfinite(pose.pose.theta))
+        << "image " << i;
+  }
+  EXPECT_EQ(module.skippedImages(), 2);  // the NaN time and the missing history
+  EXPECT_EQ(module.skippedOdometry(), 2);
+  EXPECT_GE(module.locator().stats().skippedPercepts, 1);
+  const RobotPose& pose = h.get<RobotPose>();
+  EXPECT_TRUE(pose.valid);
+  EXPECT_LT((pose.pose.translation() - truth.translation()).norm(), 0.1);
+}
+
+TEST(SelfLocalizationModule, APenaltyEndsWithTheRobotAtThePenaltyMarkSideLines) {
+  ModuleHarness h("SelfLocalization", fieldContext());
+  GameState game;
+  h.fix(game).fix(perceptsAt(0)).fix(historyAt(0, Pose2())).run();
+  game.penalty = gc::Penalty::PlayerPushing;
+  h.fix(game).fix(perceptsAt(1)).run();
+  game.penalty = gc::Penalty::None;
+  h.fix(game).fix(perceptsAt(2)).fix(historyAt(2, Pose2())).run();
+  const auto& hyps = dynamic_cast<const modules::SelfLocalization&>(h.module()).locator().hypotheses();
+  ASSERT_FALSE(hyps.empty());
+  const double markX = -field().halfLength() + field().dims.penaltyCrossDistance;
+  for (const auto& hyp : hyps) {
+    EXPECT_NEAR(hyp.mean.x(), markX, 0.01);
+    EXPECT_NEAR(std::abs(hyp.mean.y()), field().halfWidth(), 0.01);
+  }
+}
+
+// The bottom camera looking down 1 m ahead of a standing robot.
+CameraMatrix bottomCamera() {
+  CameraMatrix m;
+  m.intrinsics = CameraIntrinsics::nominal(CameraId::Bottom);
+  const double pitch = std::atan2(0.45, 1.0);
+  m.pose.linear() = Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  m.pose.translation() = Eigen::Vector3d(0.05, 0, 0.45);
+  return m;
+}
+
+TEST(BallLocatorModule, ModelsTheBallThroughOdometryAndCallsItLostOnlyWhenItShouldBeSeen) {
+  ModuleHarness h("BallLocator");
+  RobotPose pose;
+  pose.valid = true;
+  pose.pose = Pose2(1, 0, 0);
+  h.fix(pose);
+  const Eigen::Vector2d ball(1.0, 0.1);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n(0, 0.01);
+  for (int i = 0; i < 30; ++i) {
+    CameraPercepts p = perceptsAt(i / 30.0, CameraId::Bottom);
+    p.cameraMatrix = bottomCamera();
+    p.ball.seen = true;
+    p.ball.position = ball + Eigen::Vector2d(n(rng), n(rng));
+    p.ball.covariance = Eigen::Matrix2d::Identity() * 1e-4;
+    h.fix(p).fix(historyAt(p.timestamp, Pose2())).run();
+  }
+  BallModel m = h.get<BallModel>();
+  ASSERT_TRUE(m.valid);
+  EXPECT_LT((m.position - ball).norm(), 0.02);
+  EXPECT_TRUE(m.fieldValid);
+  EXPECT_LT((m.fieldPosition - Eigen::Vector2d(2.0, 0.1)).norm(), 0.02);
+  // The robot walks 0.3 m forward without seeing it (the camera looks elsewhere: not expected).
+  CameraMatrix away = bottomCamera();
+  away.pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() * away.pose.linear();
+  for (int i = 30; i < 60; ++i) {
+    CameraPercepts p = perceptsAt(i / 30.0, CameraId::Bottom);
+    p.cameraMatrix = away;
+    h.fix(p).fix(historyAt(p.timestamp, Pose2(0.01 * (i - 29), 0, 0))).run();
+  }
+  m = h.get<BallModel>();
+  EXPECT_FALSE(m.lost) << "out of view is no evidence";
+  EXPECT_LT((m.position - (ball - Eigen::Vector2d(0.3, 0))).norm(), 0.03);
+  // Now it should be in the bottom camera's image and is not there: lost after the filter's count.
+  const int lostAfter = modules::BallLocator::Params{}.filter.lostAfterFrames;
+  int frames = 0;
+  for (int i = 60; i < 80 && !h.get<BallModel>().lost; ++i, ++frames) {
+    CameraPercepts p = perceptsAt(i / 30.0, CameraId::Bottom);
+    p.cameraMatrix = bottomCamera();
+    ASSERT_TRUE(modules::BallLocator::expectedInView(h.get<BallModel>().position, p, modules::BallLocator::Params{}));
+    h.fix(p).fix(historyAt(p.timestamp, Pose2(0.3, 0, 0))).run();
+  }
+  EXPECT_EQ(frames, lostAfter);
+  // A NaN percept is skipped.
+  CameraPercepts p = perceptsAt(3, CameraId::Bottom);
+  p.ball.seen = true;
+  p.ball.position = Eigen::Vector2d(std::nan(""), 0);
+  h.fix(p).fix(historyAt(3, Pose2(0.3, 0, 0))).run();
+  EXPECT_TRUE(h.get<BallModel>().position.allFinite());
+  EXPECT_EQ(dynamic_cast<const modules::BallLocator&>(h.module()).filter().stats().skippedObservations, 1);
+}
+
+struct BehaviorFixture {
+  ModuleHarness h{"BehaviorControl", fieldContext()};
+  RobotPose pose;
+  BehaviorFixture() {
+    pose.valid = true;
+    pose.covariance = Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
+    h.fix(BallModel{}).fix(GameState{}).fix(FallState{}).fix(MotionInfo{}).fix(historyAt(1, Pose2()));
+  }
+  void run(const RobotPose& p, const BehaviorCommand& c) { h.fix(p).fix(c).run(); }
+};
+
+TEST(BehaviorControlModule, WalksToTheCommandedPoseInTheOdometryFrameAndKeepsItsTargetThroughJitter) {
+  BehaviorFixture f;
+  BehaviorCommand command;
+  command.goTo = Pose2(2, 1, M_PI / 2);
+  // Localized at (0, 0, 0) while the odometry reads (5, 5, pi/2): the target in the odometry
+  // frame is odometry * (pose^-1 * target).
+  f.pose.pose = Pose2(0, 0, 0);
+  f.pose.odometry = Pose2(5, 5, M_PI / 2);
+  f.run(f.pose, command);
+  const MotionRequest r = f.h.get<MotionRequest>();
+  EXPECT_EQ(r.motion, MotionType::WalkTo);
+  EXPECT_TRUE(r.walkTargetInOdometry);
+  const Pose2 expected = f.pose.odometry * Pose2(2, 1, M_PI / 2);
+  EXPECT_NEAR(r.walkTarget.x, expected.x, 1e-9);
+  EXPECT_NEAR(r.walkTarget.y, expected.y, 1e-9);
+  EXPECT_NEAR(r.walkTarget.theta, expected.theta, 1e-9);
+  // 2 cm of estimate jitter far from the target: the same target and id.
+  f.pose.pose = Pose2(0.02, -0.02, 0.01);
+  f.run(f.pose, command);
+  EXPECT_EQ(f.h.get<MotionRequest>().walkTargetId, r.walkTargetId);
+  // The estimate corrected by 30 cm: a new target.
+  f.pose.pose = Pose2(0.3, 0, 0);
+  f.run(f.pose, command);
+  EXPECT_NE(f.h.get<MotionRequest>().walkTargetId, r.walkTargetId);
+  // Without a valid pose: stand, and the head sweeps to find the field.
+  f.pose.valid = false;
+  f.run(f.pose, command);
+  EXPECT_EQ(f.h.get<MotionRequest>().motion, MotionType::Stand);
+  EXPECT_EQ(f.h.get<HeadMotionRequest>().mode, HeadMotionRequest::Mode::Sweep);
+  // No command: stand.
+  f.pose.valid = true;
+  f.run(f.pose, BehaviorCommand{});
+  EXPECT_EQ(f.h.get<MotionRequest>().motion, MotionType::Stand);
+}
+
+TEST(BehaviorControlModule, TheHeadTracksAKnownBallWithTheCameraThatSeesItBest) {
+  BehaviorFixture f;
+  BallModel ball;
+  ball.valid = true;
+  ball.seenTime = 0.9;
+  ball.position = Eigen::Vector2d(0.5, 0.2);
+  f.h.fix(ball);
+  f.run(f.pose, BehaviorCommand{});
+  const HeadMotionRequest& head = f.h.get<HeadMotionRequest>();
+  EXPECT_EQ(head.mode, HeadMotionRequest::Mode::LookAtRobotPoint);
+  EXPECT_EQ(head.camera, CameraId::Bottom);
+  EXPECT_NEAR(head.point.x(), 0.5, 1e-9);
+  ball.position = Eigen::Vector2d(3, 0);
+  f.h.fix(ball);
+  f.run(f.pose, BehaviorCommand{});
+  EXPECT_EQ(f.h.get<HeadMotionRequest>().camera, CameraId::Top);
+  EXPECT_GT(f.h.get<HeadMotionRequest>().maxSpeed, 0);  // limited for the images' sake
+}
+
+TEST(LookActive, LooksWhereTheFeaturesShrinkTheUncertaintyMost) {
+  behavior::LookActive look(field());
+  // Standing on the halfway line's end facing the field, uncertain across the field (y):
+  // the halfway line ahead tells nothing about y; the side line's points say little about x...
+  const Pose2 pose(0, -2.5, M_PI / 2);
+  const Eigen::Matrix3d uncertainInY = Eigen::Vector3d(0.0001, 0.09, 0.0001).asDiagonal();
+  const int best = look.choose(pose, uncertainInY, 0);
+  ASSERT_GE(best, 0);
+  const auto& f = look.features()[best];
+  // ... so it picks a feature that constrains y: a point feature or a line running along x.
+  if (f.onLine) {
+    EXPECT_GT(std::abs(f.normal.y()), 0.9);
+  }
+  // A feature behind the robot or too far is worth nothing.
+  behavior::LookActive::Feature behind{Eigen::Vector2d(0, -4.0)};
+  EXPECT_EQ(look.informationGain(behind, pose, uncertainInY), 0);
+  behavior::LookActive::Feature far{Eigen::Vector2d(0, 3.0)};
+  EXPECT_EQ(look.informationGain(far, pose, uncertainInY), 0);
+  // A nearer point feature is worth more than a farther one.
+  behavior::LookActive::Feature near{Eigen::Vector2d(0, -1.5)}, mid{Eigen::Vector2d(0, 1.0)};
+  EXPECT_GT(look.informationGain(near, pose, uncertainInY), look.informationGain(mid, pose, uncertainInY));
+  // Certain already: nothing to gain.
+  EXPECT_LT(look.informationGain(near, pose, Eigen::Matrix3d::Identity() * 1e-10), 1e-6);
+}
+
+}  // namespace
+}  // namespace nao
