@@ -1,10 +1,16 @@
 #include "controllers/RobotProgram.h"
 
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
 #include <set>
 
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
+#include "representations/infrastructure/GameControllerData.h"
 #include "representations/infrastructure/GameState.h"
+#include "representations/infrastructure/SafetyState.h"
 #include "representations/perception/VisionGeometry.h"
 #include "robot/ModuleRegistry.h"
 #include "robot/Paths.h"
@@ -17,8 +23,8 @@ template <class... T>
 struct TypeList {};
 
 // What crosses between the cadences (docs/architecture.md). Motion to cognition: the state
-// cognition interprets its images with; the calibration and the game state the app sets. Cognition to motion: the
-// behaviour's requests.
+// cognition interprets its images with, the calibration the app sets and the game state.
+// Cognition to motion: the behaviour's requests.
 using MotionToCognition = TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState>;
 using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest>;
 
@@ -54,19 +60,30 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   motionBoard_.write<CameraCalibration>() = config.calibration;
   motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand
   motionBoard_.write<HeadMotionRequest>() = HeadMotionRequest{};
-  motionBoard_.write<GameState>() = GameState{};
-  // Motion's inputs: what the cycle writes (backend), what the app sets (calibration, game state), and the
-  // behaviour's requests: copied from cognition when a cognition module provides them, else
-  // written by a scenario, a test or the app.
-  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest, GameState>();
-  std::set<std::type_index> motionHas = {typeid(SensorFrame), typeid(CameraImages), typeid(CameraCalibration),
-                                         typeid(MotionRequest), typeid(HeadMotionRequest), typeid(GameState)};
+  motionBoard_.write<GameControllerData>() = GameControllerData{};
+  motionBoard_.write<SafetyState>() = SafetyState{};
+  // Motion's inputs: what the cycle writes (backend), what the app sets (calibration, what the
+  // GameController said, the backend's safety), and the behaviour's requests: copied from
+  // cognition when a cognition module provides them, else written by a scenario, a test or
+  // the app.
+  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest, GameControllerData,
+                 SafetyState>();
+  std::set<std::type_index> motionHas = {typeid(SensorFrame),       typeid(CameraImages),
+                                         typeid(CameraCalibration), typeid(MotionRequest),
+                                         typeid(HeadMotionRequest), typeid(GameControllerData),
+                                         typeid(SafetyState)};
   std::set<std::type_index> cognitionHas;
   for (const std::string& name : chosenModules(providers)) {
     std::unique_ptr<ModuleBase> m = createModule(name, context);
     auto& has = m->cadence() == Cadence::Motion ? motionHas : cognitionHas;
     for (const auto& t : m->provided()) has.insert(t.type);
     (m->cadence() == Cadence::Motion ? motion_ : cognition_).add(std::move(m));
+  }
+  // A configuration without GameStateProvider: the game state stays the default (INITIAL).
+  if (!motionHas.count(typeid(GameState))) {
+    motionBoard_.write<GameState>() = GameState{};
+    motion_.inputs<GameState>();
+    motionHas.insert(typeid(GameState));
   }
   motion_.sort();
 
@@ -85,7 +102,9 @@ std::vector<std::string> RobotProgram::moduleOrder() const {
   return names;
 }
 
-void RobotProgram::runCognition(const CameraImage& image) {
+RobotProgram::~RobotProgram() { stopCognitionThread(); }
+
+void RobotProgram::runCognition(const Blackboard& exchange, const CameraImage& image) {
   const int cam = static_cast<int>(image.camera);
   // An image older than the last of its camera (a backend's clock gone back, a replay out of
   // order) would pair with the wrong joints: skipped.
@@ -94,14 +113,14 @@ void RobotProgram::runCognition(const CameraImage& image) {
     return;
   }
   lastImageTime_[cam] = image.timestamp;
-  for (const auto& c : toCognition_) c.copy(motionBoard_, cognitionBoard_);
+  for (const auto& c : toCognition_) c.copy(exchange, cognitionBoard_);
   cognitionBoard_.write<CurrentImage>().image = image;
   cognition_.update(cognitionBoard_);
-  for (const auto& c : toMotion_) c.copy(cognitionBoard_, motionBoard_);
   ++cognitionRuns_[cam];
 }
 
 bool RobotProgram::cycle(Backend& backend) {
+  if (threaded_ && threaded_->failed.load(std::memory_order_acquire)) std::rethrow_exception(threaded_->error);
   auto& frame = motionBoard_.write<SensorFrame>();
   if (!backend.waitForSensors(frame)) return false;
   auto& images = motionBoard_.write<CameraImages>();
@@ -113,13 +132,113 @@ bool RobotProgram::cycle(Backend& backend) {
     else
       slot.reset();
   }
+  if (threaded_ && !toMotion_.empty()) {
+    // Cognition's newest requests; while it is copying them, this cycle keeps the last ones.
+    std::unique_lock<std::mutex> lock(threaded_->requestsMutex, std::try_to_lock);
+    if (lock.owns_lock() && threaded_->fresh) {
+      for (const auto& c : toMotion_) c.copy(threaded_->requests, motionBoard_);
+      threaded_->fresh = false;
+    }
+  }
   motion_.update(motionBoard_);
   // The answer goes out before cognition runs: an image never delays it.
   backend.sendRequest(motionBoard_.read<JointRequest>(), motionBoard_.write<LedRequest>());
-  if (!cognition_.modules().empty())
-    for (const auto& img : images.latest)
-      if (img) runCognition(*img);
+  if (cognition_.modules().empty()) return true;
+  if (threaded_) {
+    for (auto& img : images.latest)
+      if (img) handOff(*img);
+    return true;
+  }
+  for (const auto& img : images.latest)
+    if (img) {
+      runCognition(motionBoard_, *img);
+      for (const auto& c : toMotion_) c.copy(cognitionBoard_, motionBoard_);
+    }
   return true;
+}
+
+// ---- the threaded form ----------------------------------------------------------------------
+
+namespace {
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+}  // namespace
+
+void RobotProgram::startCognitionThread() {
+  if (threaded_) return;
+  threaded_ = std::make_unique<Threads>();
+  if (cognition_.modules().empty()) return;  // nothing to run: no thread
+  threaded_->cognition = std::thread([this] { cognitionLoop(); });
+}
+
+void RobotProgram::stopCognitionThread() {
+  if (!threaded_ || !threaded_->cognition.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(threaded_->jobsMutex);
+    threaded_->stop = true;
+  }
+  threaded_->wake.notify_one();
+  threaded_->cognition.join();
+}
+
+std::array<long, kNumCameras> RobotProgram::droppedImages() const {
+  if (!threaded_) return {};
+  std::lock_guard<std::mutex> lock(threaded_->jobsMutex);
+  return threaded_->dropped;
+}
+
+// Motion's side: the image and a snapshot of the exchange into this camera's staging buffer
+// (outside the lock), then swapped into the pending slot; one still pending there is dropped.
+void RobotProgram::handOff(const CameraImage& image) {
+  Threads& t = *threaded_;
+  const int cam = static_cast<int>(image.camera);
+  Job& job = t.staging[cam];
+  job.image = image;  // into the buffer's own capacity
+  for (const auto& c : toCognition_) c.copy(motionBoard_, job.exchange);
+  {
+    std::lock_guard<std::mutex> lock(t.jobsMutex);
+    std::swap(job, t.pending[cam]);
+    if (t.full[cam]) ++t.dropped[cam];
+    t.full[cam] = true;
+  }
+  t.wake.notify_one();
+}
+
+void RobotProgram::cognitionLoop() {
+  Threads& t = *threaded_;
+  try {
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(t.jobsMutex);
+        t.wake.wait(lock, [&t] { return t.stop || t.full[0] || t.full[1]; });
+        if (t.stop) return;
+        // Both cameras waiting: the earlier exposure first, as they were taken.
+        int cam = t.full[0] ? 0 : 1;
+        if (t.full[0] && t.full[1] && t.pending[1].image.timestamp < t.pending[0].image.timestamp) cam = 1;
+        std::swap(t.working, t.pending[cam]);
+        t.full[cam] = false;
+      }
+      const auto wall0 = std::chrono::steady_clock::now();
+      const double cpu0 = threadCpuMs();
+      runCognition(t.working.exchange, t.working.image);
+      const double wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
+      cognitionTime_.wallMsSum += wallMs;
+      cognitionTime_.wallMsMax = std::max(cognitionTime_.wallMsMax, wallMs);
+      cognitionTime_.cpuMsSum += threadCpuMs() - cpu0;
+      if (!toMotion_.empty()) {
+        std::lock_guard<std::mutex> lock(t.requestsMutex);
+        for (const auto& c : toMotion_) c.copy(cognitionBoard_, t.requests);
+        t.fresh = true;
+      }
+    }
+  } catch (...) {
+    // Motion rethrows it at its next cycle (the run fails as in the lock-step form).
+    t.error = std::current_exception();
+    t.failed.store(true, std::memory_order_release);
+  }
 }
 
 }  // namespace nao
