@@ -12,6 +12,7 @@
 #include "robot/JointLimits.h"
 #include "robot/OutputFiles.h"
 #include "robot/Paths.h"
+#include "robot/nao/ImageFiles.h"
 #include "robot/nao/GameController.h"
 
 namespace nao::cli {
@@ -60,6 +61,18 @@ void seedJsonField(Command& c) {
 
 std::string pathProblem(const std::string& s) { return s.empty() ? "an empty path" : ""; }
 
+// --cameras files:DIR: DIR/top/ and DIR/bottom/ each hold PNG or JPEG images.
+std::string cameraFilesProblem(const std::string& s) {
+  const std::string prefix = "files:";
+  if (s.rfind(prefix, 0) != 0) return "not a choice";
+  const std::string dir = s.substr(prefix.size());
+  if (dir.empty()) return "files: needs a folder";
+  for (const char* camera : {"top", "bottom"})
+    if (imageFilesIn(dir + "/" + camera).empty())
+      return dir + "/" + camera + "/ holds no PNG or JPEG images";
+  return "";
+}
+
 }  // namespace
 
 void CommandLine::declare() {
@@ -90,7 +103,9 @@ void CommandLine::declare() {
     c.numbers("--pose", r.pose, poseElements(), "sim: the start pose (default: the calibration position)");
     c.onField("--pose", r.pose);
     c.choice("--cameras", r.cameras, {"on", "off", "none", "v4l2"},
-             "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2 (default v4l2)");
+             "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2|files:DIR (default v4l2; "
+             "files: the PNG/JPEG images of DIR/top/ and DIR/bottom/ in name order, looping, 30 Hz each)",
+             "files:DIR", cameraFilesProblem);
     c.outputFolder("--images", r.images, "sim: camera PNGs once a second and a field view into DIR");
     NaoRunOptions& n = r.nao;
     c.text("--lola-socket", n.lolaSocket, "PATH", "nao: LoLA's Unix socket (default /tmp/robocup)", pathProblem);
@@ -111,7 +126,7 @@ void CommandLine::declare() {
       const bool simValue = r.cameras == "on" || r.cameras == "off";
       if (!r.cameras.empty() && simValue != (r.backend == "sim"))
         return "--cameras: " + r.cameras + " is not a choice with --backend " + r.backend +
-               (r.backend == "sim" ? " (on or off)" : " (none or v4l2)");
+               (r.backend == "sim" ? " (on or off)" : " (none, v4l2 or files:DIR)");
       if (r.backend == "sim" && r.seconds > 3600) return std::string("--seconds: at most 3600 with --backend sim");
       return std::string();
     });

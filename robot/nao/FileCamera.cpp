@@ -1,0 +1,66 @@
+#include "robot/nao/FileCamera.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace nao {
+
+FileCamera::FileCamera(CameraId camera, std::vector<std::string> files, Decoder decode, double start, double period,
+                       Log log)
+    : camera_(camera), files_(std::move(files)), decode_(std::move(decode)), period_(period), due_(start),
+      log_(std::move(log)) {
+  if (!files_.empty()) thread_ = std::thread([this] { decodeLoop(); });
+}
+
+FileCamera::~FileCamera() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  if (thread_.joinable()) thread_.join();
+}
+
+void FileCamera::decodeLoop() {
+  std::size_t index = 0, failures = 0;
+  CameraImage image;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || !ready_; });
+      if (stop_) return;
+    }
+    const std::string& path = files_[index];
+    index = (index + 1) % files_.size();
+    try {
+      image = decode_(path, camera_);
+      image.camera = camera_;
+      failures = 0;
+    } catch (const std::exception& e) {
+      // A broken file is skipped (logged once per pass); a folder of broken files gives no frames.
+      if (log_ && failures < files_.size()) log_(std::string("camera ") + cameraName(camera_) + ": skipped " + e.what());
+      if (++failures >= files_.size()) return;
+      continue;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::swap(next_, image);
+    ready_ = true;
+  }
+}
+
+bool FileCamera::grab(CameraImage& image, double now) {
+  if (now < due_) return false;
+  {
+    std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock() || !ready_) return false;  // not decoded yet: the next cycle
+    std::swap(image, next_);
+    ready_ = false;
+  }
+  wake_.notify_one();
+  image.timestamp = due_;
+  // After a stall (a busy machine) the next frame is due a period from now, not in a burst.
+  due_ = std::max(due_ + period_, now + period_ * 0.5);
+  return true;
+}
+
+}  // namespace nao
