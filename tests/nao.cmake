@@ -31,6 +31,7 @@ target_compile_definitions(lola_test PRIVATE MSGPACK_NO_BOOST)
 
 nao_add_test(gamecontroller_test SOURCES gamecontroller_test.cpp LIBS nao_robot LABELS nao)
 nao_add_test(v4l2_test SOURCES v4l2_test.cpp LIBS nao_robot LABELS nao)
+nao_add_test(file_camera_test SOURCES file_camera_test.cpp LIBS nao_robot LABELS nao TIMEOUT 60)
 
 # deploy_test (robot/deploy/deploy.sh --dry-run) is in tests/robot_bundle.cmake, with the robot bundle's tests.
 

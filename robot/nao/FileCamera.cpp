@@ -22,7 +22,8 @@ FileCamera::~FileCamera() {
 }
 
 void FileCamera::decodeLoop() {
-  std::size_t index = 0, failures = 0;
+  std::size_t index = 0, brokenCount = 0;
+  std::vector<bool> broken(files_.size(), false);  // logged once, then left out
   CameraImage image;
   for (;;) {
     {
@@ -30,16 +31,16 @@ void FileCamera::decodeLoop() {
       wake_.wait(lock, [this] { return stop_ || !ready_; });
       if (stop_) return;
     }
-    const std::string& path = files_[index];
+    const std::size_t i = index;
     index = (index + 1) % files_.size();
+    if (broken[i]) continue;
     try {
-      image = decode_(path, camera_);
+      image = decode_(files_[i], camera_);
       image.camera = camera_;
-      failures = 0;
     } catch (const std::exception& e) {
-      // A broken file is skipped (logged once per pass); a folder of broken files gives no frames.
-      if (log_ && failures < files_.size()) log_(std::string("camera ") + cameraName(camera_) + ": skipped " + e.what());
-      if (++failures >= files_.size()) return;
+      broken[i] = true;
+      if (log_) log_(std::string("camera ") + cameraName(camera_) + ": skipped " + e.what());
+      if (++brokenCount == files_.size()) return;  // nothing left to show
       continue;
     }
     std::lock_guard<std::mutex> lock(mutex_);
