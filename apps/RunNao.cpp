@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -188,12 +189,18 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
   while (!program && backend.waitForSensors(first)) {
     if (!building.valid()) {
       RobotProgramConfig programConfig;
-      programConfig.headId = backend.robotInfo().headId;
-      const std::string overlay = programConfig.configDir + "/robots/" + programConfig.headId;
-      logLine(std::filesystem::is_directory(overlay) ? "run: parameters with this head's " + overlay + "/"
-                                                     : "run: no per-robot parameters for head " + programConfig.headId +
-                                                           " (" + overlay + "/)");
-      programConfig.calibration = storedCalibration(programConfig.headId);
+      const std::string headId = backend.robotInfo().headId;
+      const std::string overlay = programConfig.configDir + "/robots/" + headId;
+      // A head id that cannot name a folder (never a NAO's) must not stop the robot: no overlay.
+      const bool usable = !headId.empty() && std::all_of(headId.begin(), headId.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+      });
+      if (usable) programConfig.headId = headId;
+      logLine(!usable ? "run: head id '" + escapeControl(headId) + "' names no folder: no per-robot parameters"
+              : std::filesystem::is_directory(overlay) ? "run: parameters with this head's " + overlay + "/"
+                                                       : "run: no per-robot parameters for head " + headId + " (" +
+                                                             overlay + "/)");
+      programConfig.calibration = storedCalibration(headId);
       programConfig.field = field;
       building = std::async(std::launch::async,
                             [programConfig] { return std::make_unique<RobotProgram>(programConfig); });

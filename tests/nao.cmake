@@ -20,7 +20,8 @@ add_executable(nao_cognition_test nao_cognition_test.cpp)
 target_link_libraries(nao_cognition_test PRIVATE nlohmann_json::nlohmann_json GTest::gtest GTest::gtest_main)
 target_include_directories(nao_cognition_test PRIVATE ${CMAKE_SOURCE_DIR})
 target_compile_definitions(nao_cognition_test PRIVATE NAO_BINARY="$<TARGET_FILE:nao-soccer>"
-                                                       LOLA_PEER="$<TARGET_FILE:lola_peer>")
+                                                       LOLA_PEER="$<TARGET_FILE:lola_peer>"
+                                                       NAO_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
 add_dependencies(nao_cognition_test nao-soccer lola_peer)
 nao_warnings(nao_cognition_test)
 gtest_discover_tests(nao_cognition_test DISCOVERY_TIMEOUT 60

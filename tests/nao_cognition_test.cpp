@@ -3,7 +3,8 @@
 // the real nao-soccer with --cameras files:DIR, where DIR holds frames the simulator rendered
 // here (`nao-soccer render`), fed through the NAO backend's camera hand-off at 30 Hz each.
 // Motion answers every LoLA packet in time while cognition runs on both cameras in its own
-// thread; an image cognition had no time for is dropped and counted.
+// thread; an image cognition had no time for is dropped and counted. And the program is built
+// for the head LoLA names (its parameter overlay).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -92,6 +93,36 @@ TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
   // The program was built for the head LoLA named (its per-robot parameters and calibration).
   EXPECT_EQ(run["robot"]["head_id"], "P0000073A07S8AF00027");
   if (!HasFailure()) fs::remove_all(dir);
+}
+
+// The program is built for the head LoLA's first packet names: that head's parameter overlay
+// (config/robots/<head id>/) is read. Proof: a data root whose overlay for the peer's head holds
+// an unknown key stops the start with one line naming that file.
+TEST(NaoCognition, TheProgramIsBuiltWithTheOverlayOfTheHeadLolaNames) {
+  const fs::path home = fs::path(::testing::TempDir()) / "nao_cognition_overlay";
+  fs::remove_all(home);
+  fs::create_directories(home / "models" / "vision");
+  fs::copy(fs::path(NAO_SOURCE_DIR) / "config", home / "config", fs::copy_options::recursive);
+  fs::copy_file(fs::path(NAO_SOURCE_DIR) / "models/vision/ball_classifier.yml",
+                home / "models/vision/ball_classifier.yml");
+  const fs::path overlay = home / "config/robots/P0000073A07S8AF00027/HeadControl.json";  // lola_peer's head
+  fs::create_directories(overlay.parent_path());
+  std::ofstream(overlay) << "{\"bogus\": 1}\n";
+  const fs::path peerJson = home / "peer.json";
+  const std::string cmd = "NAO_SOCCER_HOME=" + home.string() + " " + LOLA_PEER + " --nao-soccer " + NAO_BINARY +
+                          " --soak 2 --json " + peerJson.string() + " 2>&1";
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, p)) out += buffer;
+  pclose(p);  // the peer fails: the program ended at the start
+  EXPECT_NE(out.find("run: parameters with this head's " + overlay.parent_path().string() + "/"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("nao-soccer run: " + overlay.string() + ": bogus: unknown parameter"), std::string::npos) << out;
+  const nlohmann::json peer = readJson(peerJson);
+  if (peer.contains("work_dir")) fs::remove_all(peer["work_dir"].get<std::string>());
+  if (!HasFailure()) fs::remove_all(home);
 }
 
 }  // namespace
