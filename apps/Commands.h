@@ -2,13 +2,20 @@
 // The bodies of the nao-soccer commands. Each gets its parsed options (apps/cli/Options.h,
 // declared and bounded in apps/cli/Declarations.cpp) and returns the exit code: 0 success,
 // 1 a failed run; bad input throws nao::Error (exit 2).
+#include <functional>
+#include <string>
+
 #include "apps/cli/Options.h"
+#include "robot/CameraImage.h"
 
 namespace nao::cli {
 
 int renderCommand(const RenderOptions& o);
 int runCommand(const RunOptions& o);
-int runNao(const RunOptions& o);  // apps/RunNao.cpp
+// apps/RunNao.cpp. readImage: decodes a PNG/JPEG for --cameras files:DIR (sim::readImage in
+// nao-soccer; nao-soccer-robot has no image decoding and refuses files:).
+using ImageFileReader = std::function<CameraImage(const std::string& path, CameraId camera)>;
+int runNao(const RunOptions& o, ImageFileReader readImage = {});
 int benchSimCommand(const BenchSimOptions& o);
 int benchPerceptionCommand(const BenchPerceptionOptions& o);
 int benchCalibrationCommand(const BenchCalibrationOptions& o);

@@ -1,5 +1,7 @@
 // nao-soccer run --backend nao: the same robot program as in the simulator, against LoLA's
-// socket and the V4L2 cameras, with the GameController and the buttons on the blackboard.
+// socket and the V4L2 cameras (or image files), in its threaded form: motion in this thread,
+// paced by LoLA, cognition in its own. The app keeps the infrastructure: the GameController's
+// UDP socket, the backend's safety; what they say goes onto the board for the modules.
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 
@@ -8,11 +10,15 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <chrono>
 #include <fstream>
+#include <future>
+#include <memory>
 
 #include "controllers/RobotProgram.h"
 #include "perception/calibration/CalibrationStore.h"
@@ -20,7 +26,11 @@
 #include "perception/vision/BallClassifier.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
+#include "representations/infrastructure/GameControllerData.h"
+#include "representations/infrastructure/SafetyState.h"
+#include "robot/nao/FileCamera.h"
 #include "robot/nao/GameController.h"
+#include "robot/nao/ImageFiles.h"
 #include "robot/nao/NaoBackend.h"
 
 namespace nao::cli {
@@ -91,9 +101,31 @@ double threadCpuMs() {
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
 
+double monotonicSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) * 1e-9;
+}
+
+// The camera calibration stored for this head (config/calibration/<head id>.json). A broken
+// file is logged and the offsets stay zero: a wrong calibration must not stop the robot.
+CameraCalibration storedCalibration(const std::string& headId) {
+  try {
+    const calibration::CalibrationStore store;
+    if (const auto record = store.load(headId)) {
+      logLine("run: camera calibration " + store.pathFor(headId));
+      return record->offsets;
+    }
+    logLine("run: no camera calibration for head " + headId + " yet (offsets 0)");
+  } catch (const std::exception& e) {
+    logLine(std::string("run: camera calibration not used: ") + e.what());
+  }
+  return {};
+}
+
 }  // namespace
 
-int runNao(const RunOptions& options) {
+int runNao(const RunOptions& options, ImageFileReader readImage) {
   const NaoRunOptions& nao = options.nao;
   std::optional<double> seconds;
   if (options.common.has("--seconds")) seconds = options.seconds;
@@ -103,6 +135,21 @@ int runNao(const RunOptions& options) {
   config.camera[0].device = nao.cameraTop;
   config.camera[1].device = nao.cameraBottom;
   if (!nao.cameraSettings.empty()) applyCameraSettings(nao.cameraSettings, config.camera);
+  // --cameras files:DIR: the images of DIR/top/ and DIR/bottom/ through the backend's camera
+  // hand-off instead of V4L2 (the folders were checked with the command line).
+  if (options.cameras.rfind("files:", 0) == 0) {
+    if (!readImage) throw Error("--cameras", "files: is not in this executable (it decodes no PNG/JPEG; use nao-soccer)");
+    const std::string dir = options.cameras.substr(6);
+    const double start = monotonicSeconds();
+    std::string counts;
+    for (CameraId cam : {CameraId::Top, CameraId::Bottom}) {
+      std::vector<std::string> files = imageFilesIn(dir + "/" + cameraName(cam));
+      counts += (counts.empty() ? "" : ", ") + std::to_string(files.size()) + " " + cameraName(cam);
+      config.sources[static_cast<int>(cam)] =
+          std::make_shared<FileCamera>(cam, std::move(files), readImage, start, kCameraPeriod, logLine);
+    }
+    logLine("run: cameras from the files in " + dir + " (" + counts + "), 30 Hz each, looping");
+  }
 
   GameController::Config gcConfig;
   gcConfig.team = nao.team;
@@ -123,118 +170,184 @@ int runNao(const RunOptions& options) {
   DebugSink debug(options.debug);  // opened before LoLA: a bad --debug-out stops the start
 
   NaoBackend::installSignalHandlers();
-  useRealTimePriority();
   GameController gameController(gcConfig, logLine);
   NaoBackend backend(config, logLine);
-  RobotProgramConfig programConfig;
-  programConfig.field = field;
-  if (options.goTo.size() == 3) programConfig.goTo = Pose2(options.goTo[0], options.goTo[1], options.goTo[2] * M_PI / 180);
-  programConfig.debug = debug.channels();
-  RobotProgram program(programConfig);
-  ButtonInterface buttons;
-  Blackboard& bb = program.blackboard();
-  // Soft while the robot tips over and for its first second on the ground; after that the
-  // ramp hands the joints back to the program (its get-up motion).
-  backend.setFallMonitor([&bb]() -> std::string {
-    if (!bb.has<FallState>()) return {};
-    const FallState& f = bb.read<FallState>();
-    const double lying = f.fallen ? bb.read<SensorFrame>().time - f.fallTime : 0;
-    if (!f.falling && !(f.fallen && lying < 1.0)) return {};
-    return std::string(f.fallen ? "fallen" : "falling") + " (" + fallDirectionName(f.direction) + ")";
-  });
+  auto stopAfterSeconds = [&](double time) {
+    if (!seconds || time < *seconds) return;
+    char text[64];
+    std::snprintf(text, sizeof text, "--seconds %g reached", *seconds);
+    backend.requestStop(text);
+  };
 
-  // The camera calibration stored for this head (config/calibration/<head id>.json), read as
-  // soon as LoLA has told the head id. A broken file is logged and the offsets stay zero: a
-  // wrong calibration must not stop the robot.
-  bool calibrationLoaded = false;
-  // CPU time per cadence (this thread's, so waiting for LoLA's next packet does not count): the
-  // budget a team sees on the Atom.
+  // The robot program is built once LoLA's first packet has told the head id: its parameters
+  // with config/robots/<head id>/ over them, and the head's stored camera calibration. It is
+  // built in a thread of its own while every packet is answered soft in place (the stiffness
+  // ramp starts when the program takes over), so that no answer waits for the build.
+  std::unique_ptr<RobotProgram> program;
+  std::future<std::unique_ptr<RobotProgram>> building;
+  double programStart = 0;
+  SensorFrame first;
+  while (!program && backend.waitForSensors(first)) {
+    if (!building.valid()) {
+      RobotProgramConfig programConfig;
+      const std::string headId = backend.robotInfo().headId;
+      const std::string overlay = programConfig.configDir + "/robots/" + headId;
+      // A head id that cannot name a folder (never a NAO's) must not stop the robot: no overlay.
+      const bool usable = !headId.empty() && std::all_of(headId.begin(), headId.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+      });
+      if (usable) programConfig.headId = headId;
+      logLine(!usable ? "run: head id '" + escapeControl(headId) + "' names no folder: no per-robot parameters"
+              : std::filesystem::is_directory(overlay) ? "run: parameters with this head's " + overlay + "/"
+                                                       : "run: no per-robot parameters for head " + headId + " (" +
+                                                             overlay + "/)");
+      programConfig.calibration = storedCalibration(headId);
+      programConfig.field = field;
+      if (options.goTo.size() == 3)
+        programConfig.goTo = Pose2(options.goTo[0], options.goTo[1], options.goTo[2] * M_PI / 180);
+      programConfig.debug = debug.channels();
+      building = std::async(std::launch::async,
+                            [programConfig] { return std::make_unique<RobotProgram>(programConfig); });
+    }
+    backend.answerSoftInPlace();
+    stopAfterSeconds(first.time);
+    if (building.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+      program = building.get();  // a bad parameter file throws here: one line, exit 2
+      programStart = first.time;
+    }
+  }
+  if (!program && building.valid()) building.get();  // stopped while building: its error, if any
+
+  // CPU time of the motion cadence (this thread's, so waiting for LoLA's next packet does not
+  // count): the budget a team sees on the Atom. Cognition measures its own thread.
   double cpuSumMs = 0, cpuMaxMs = 0;
   std::uint64_t cpuCycles = 0;
-  double cpuStart = threadCpuMs();
-  while (true) {
-    const double cpuNow = threadCpuMs();
-    if (cpuCycles++ > 0) {
-      cpuSumMs += cpuNow - cpuStart;
-      cpuMaxMs = std::max(cpuMaxMs, cpuNow - cpuStart);
-    }
-    cpuStart = cpuNow;
-    bb.write<GameState>() = gameController.state();
-    bb.write<LedRequest>().chest = chestColour(gameController.state());
-    if (!program.cycle(backend)) break;
-    if (!calibrationLoaded && backend.robotInfo().headId != "unknown") {
-      calibrationLoaded = true;
-      try {
-        const calibration::CalibrationStore store;
-        if (const auto record = store.load(backend.robotInfo().headId)) {
-          bb.write<CameraCalibration>() = record->offsets;
-          logLine("run: camera calibration " + store.pathFor(backend.robotInfo().headId));
-        } else {
-          logLine("run: no camera calibration for head " + backend.robotInfo().headId + " yet (offsets 0)");
+  if (program) {
+    Blackboard& bb = program->blackboard();
+    // Soft while the robot tips over and for its first second on the ground; after that the
+    // ramp hands the joints back to the program (its get-up motion).
+    backend.setFallMonitor([&bb]() -> std::string {
+      if (!bb.has<FallState>()) return {};
+      const FallState& f = bb.read<FallState>();
+      const double lying = f.fallen ? bb.read<SensorFrame>().time - f.fallTime : 0;
+      if (!f.falling && !(f.fallen && lying < 1.0)) return {};
+      return std::string(f.fallen ? "fallen" : "falling") + " (" + fallDirectionName(f.direction) + ")";
+    });
+    // Cognition in a thread of its own; started before this thread becomes real-time, so that
+    // it keeps the normal policy (threads inherit it).
+    program->startCognitionThread();
+    useRealTimePriority();
+    GameState lastGame;
+    double time = first.time;
+    double cpuStart = threadCpuMs();
+    while (true) {
+      const double cpuNow = threadCpuMs();
+      if (cpuCycles++ > 0) {
+        cpuSumMs += cpuNow - cpuStart;
+        cpuMaxMs = std::max(cpuMaxMs, cpuNow - cpuStart);
+      }
+      cpuStart = cpuNow;
+      // What the program's GameStateProvider and LedControl turn into the game state and the
+      // chest LED: the receiver's view and the safety's user unstiffen.
+      const bool gcActive = gameController.gameControllerActive(time);
+      bb.write<GameControllerData>() = GameControllerData{gcActive, gameController.state()};
+      bb.write<SafetyState>().userUnstiffened = backend.safety().currentFault() == SafetyFault::User;
+      if (!program->cycle(backend)) break;
+      const SensorFrame& frame = bb.read<SensorFrame>();
+      time = frame.time;
+      if (bb.has<ButtonState>()) {
+        for (ButtonEvent e : bb.read<ButtonState>().events) {
+          logLine(std::string("buttons: ") + buttonEventName(e));
+          if (e == ButtonEvent::ChestPress && backend.safety().currentFault() == SafetyFault::User)
+            backend.safety().resume("chest button");
+          else if (e == ButtonEvent::ChestPress && gcActive)
+            logLine("game: chest button ignored, the GameController decides");
+          else if (e == ButtonEvent::Unstiffen)
+            backend.safety().fault(SafetyFault::User, "head buttons held: unstiffened (chest button to stiffen again)");
+          // StartCalibration, StartCalibrationEvaluation: on the board (ButtonState) for the behaviour
         }
-      } catch (const std::exception& e) {
-        logLine(std::string("run: camera calibration not used: ") + e.what());
       }
+      const GameState& game = bb.read<GameState>();
+      if (!game.fromGameController && (game.state != lastGame.state || game.penalty != lastGame.penalty))
+        logLine(std::string("game: ") + gc::stateName(game.state) + (game.penalised() ? ", penalised" : "") +
+                " (chest button)");
+      lastGame = game;
+      gameController.receive(frame.time);
+      gc::ReturnData ret;
+      ret.playerNum = static_cast<std::uint8_t>(gcConfig.player);
+      ret.teamNum = static_cast<std::uint8_t>(gcConfig.team);
+      ret.fallen = bb.has<FallState>() && bb.read<FallState>().fallen ? 1 : 0;
+      gameController.sendReturnIfDue(frame.time, ret);
+      stopAfterSeconds(frame.time);
     }
-    const SensorFrame& frame = bb.read<SensorFrame>();
-    const ButtonState& pressed = buttons.update(frame.touch, frame.time);
-    bb.write<ButtonState>() = pressed;
-    for (ButtonEvent e : pressed.events) {
-      logLine(std::string("buttons: ") + buttonEventName(e));
-      switch (e) {
-        case ButtonEvent::ChestPress:
-          if (backend.safety().currentFault() == SafetyFault::User) backend.safety().resume("chest button");
-          else gameController.chestButton(frame.time);
-          break;
-        case ButtonEvent::Unstiffen:
-          backend.safety().fault(SafetyFault::User, "head buttons held: unstiffened (chest button to stiffen again)");
-          break;
-        case ButtonEvent::StartCalibration:
-        case ButtonEvent::StartCalibrationEvaluation:
-          break;  // on the blackboard (ButtonState) for the calibration behaviour
-      }
-    }
-    gameController.receive(frame.time);
-    gc::ReturnData ret;
-    ret.playerNum = static_cast<std::uint8_t>(gcConfig.player);
-    ret.teamNum = static_cast<std::uint8_t>(gcConfig.team);
-    ret.fallen = bb.has<FallState>() && bb.read<FallState>().fallen ? 1 : 0;
-    gameController.sendReturnIfDue(frame.time, ret);
-    if (seconds && frame.time >= *seconds) {
-      char text[64];
-      std::snprintf(text, sizeof text, "--seconds %g reached", *seconds);
-      backend.requestStop(text);
-    }
+    program->stopCognitionThread();
+    backend.setFallMonitor({});
   }
 
   const auto& s = backend.stats();
-  const double meanMs = s.cycles ? s.sumAnswerMs / static_cast<double>(s.cycles) : 0;
+  const double meanMs = s.answered ? s.sumAnswerMs / static_cast<double>(s.answered) : 0;
+  const double p99Ms = s.answerMsQuantile(0.99);
   std::fprintf(stderr,
-               "run: stopped: %s; %llu cycles, answers within %.2f ms (mean %.2f ms), %llu late, %llu corrupt "
-               "packets, %llu stale periods, %llu skipped\n",
-               backend.stopReason().c_str(), static_cast<unsigned long long>(s.cycles), s.maxAnswerMs, meanMs,
+               "run: stopped: %s; %llu cycles, %llu answered, answers within %.2f ms (mean %.2f, p99 %.2f ms), "
+               "%llu late, %llu corrupt packets, %llu stale periods, %llu skipped\n",
+               backend.stopReason().c_str(), static_cast<unsigned long long>(s.cycles),
+               static_cast<unsigned long long>(s.answered), s.maxAnswerMs, meanMs, p99Ms,
                static_cast<unsigned long long>(s.late), static_cast<unsigned long long>(s.corrupt),
                static_cast<unsigned long long>(s.staleEvents), static_cast<unsigned long long>(s.skipped));
   const double cpuMeanMs = cpuCycles > 1 ? cpuSumMs / static_cast<double>(cpuCycles - 1) : 0;
-  std::fprintf(stderr, "run: CPU per cycle: mean %.3f ms, max %.3f ms (of the 12 ms cadence)\n", cpuMeanMs, cpuMaxMs);
+  std::fprintf(stderr, "run: motion CPU per cycle: mean %.3f ms, max %.3f ms (of the 12 ms cadence)\n", cpuMeanMs,
+               cpuMaxMs);
+  std::array<long, kNumCameras> processed{}, dropped{};
+  long skippedImages = 0, images = 0;
+  RobotProgram::CognitionTime cognition;
+  if (program) {
+    processed = program->cognitionRuns();
+    dropped = program->droppedImages();
+    skippedImages = program->skippedImages();
+    cognition = program->cognitionTime();
+  }
+  for (long n : processed) images += n;
+  const double runSeconds = std::max(1e-9, backend.now() - programStart);
+  const double cognitionMeanMs = images ? cognition.wallMsSum / static_cast<double>(images) : 0;
+  const double cognitionCpuMs = images ? cognition.cpuMsSum / static_cast<double>(images) : 0;
+  std::fprintf(stderr,
+               "run: cognition: %ld top + %ld bottom images (%.1f + %.1f per s), %ld + %ld dropped (newer image "
+               "waiting), %.2f ms per image (max %.2f, CPU %.2f)\n",
+               processed[0], processed[1], static_cast<double>(processed[0]) / runSeconds,
+               static_cast<double>(processed[1]) / runSeconds, dropped[0], dropped[1], cognitionMeanMs,
+               cognition.wallMsMax, cognitionCpuMs);
   if (!options.common.json.empty()) {
-    const GameState& g = gameController.state();
-    writeJson(options.common.json,
-              {{"backend", "nao"},
-               {"cycles", s.cycles},
-               {"packets", s.packets},
-               {"corrupt_packets", s.corrupt},
-               {"stale_periods", s.staleEvents},
-               {"skipped_packets", s.skipped},
-               {"late_answers", s.late},
-               {"max_answer_ms", s.maxAnswerMs},
-               {"mean_answer_ms", meanMs},
-               {"cpu_ms_per_cycle", {{"mean", cpuMeanMs}, {"max", cpuMaxMs}}},
-               {"stop_reason", backend.stopReason()},
-               {"clean_stop", backend.stoppedCleanly()},
-               {"robot", {{"body_id", backend.robotInfo().bodyId}, {"head_id", backend.robotInfo().headId}}},
-               {"game", {{"state", gc::stateName(g.state)}, {"penalised", g.penalised()},
-                         {"from_gamecontroller", g.fromGameController}, {"rejected_packets", gameController.rejected()}}}});
+    const GameState& g = program ? program->blackboard().read<GameState>() : gameController.state();
+    nlohmann::json j = {
+        {"backend", "nao"},
+        {"cycles", s.cycles},
+        {"packets", s.packets},
+        {"corrupt_packets", s.corrupt},
+        {"stale_periods", s.staleEvents},
+        {"skipped_packets", s.skipped},
+        {"late_answers", s.late},
+        {"max_answer_ms", s.maxAnswerMs},
+        {"mean_answer_ms", meanMs},
+        {"lola", {{"cycles", s.cycles}, {"answered", s.answered}, {"late", s.late}, {"cycle_ms_p99", p99Ms}}},
+        {"cpu_ms_per_cycle", {{"mean", cpuMeanMs}, {"max", cpuMaxMs}}},
+        {"images_processed", {{"top", processed[0]}, {"bottom", processed[1]}}},
+        {"images_dropped", {{"top", dropped[0]}, {"bottom", dropped[1]}}},
+        {"images_skipped", skippedImages},
+        {"cognition",
+         {{"ms_per_image", {{"mean", cognitionMeanMs}, {"max", cognition.wallMsMax}}},
+          {"cpu_ms_per_image", cognitionCpuMs},
+          {"images_per_s", {{"top", static_cast<double>(processed[0]) / runSeconds},
+                            {"bottom", static_cast<double>(processed[1]) / runSeconds}}}}},
+        {"modules", program ? program->moduleOrder() : std::vector<std::string>{}},
+        {"cadences",
+         {{"motion", program ? program->pipeline().order() : std::vector<std::string>{}},
+          {"cognition", program ? program->cognitionPipeline().order() : std::vector<std::string>{}}}},
+        {"stop_reason", backend.stopReason()},
+        {"clean_stop", backend.stoppedCleanly()},
+        {"robot", {{"body_id", backend.robotInfo().bodyId}, {"head_id", backend.robotInfo().headId}}},
+        {"game", {{"state", gc::stateName(g.state)}, {"penalised", g.penalised()},
+                  {"from_gamecontroller", g.fromGameController}, {"rejected_packets", gameController.rejected()}}}};
+    writeJson(options.common.json, j);
   }
   return backend.stoppedCleanly() ? 0 : 1;
 }

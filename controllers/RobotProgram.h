@@ -5,9 +5,15 @@
 // config/parameters/<module>.json (docs/architecture.md).
 #include <array>
 #include <functional>
+#include <atomic>
+#include <condition_variable>
+#include <exception>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "controllers/MotionEngine.h"
@@ -63,16 +69,34 @@ struct RobotProgramConfig {
 // the cadence boundary: cognition sees motion's state as of the cycle the image arrived in, and
 // motion sees cognition's requests from the next cycle on, as it would from another thread.
 // In this lock-step form the run is deterministic.
+//
+// The NAO's threaded form (startCognitionThread): cycle() runs motion only, paced by the
+// backend, and hands each new image with a snapshot of the motion-to-cognition exchange (taken
+// in the cycle the image arrived) to a cognition thread; cognition hands its requests back and
+// motion takes the newest at the start of a cycle. Motion never waits for cognition: the
+// hand-offs are swaps under a mutex, and motion skips a request pick-up rather than wait for
+// it. When cognition is slower than the cameras, an image not yet taken is replaced by its
+// camera's next one (newest wins; droppedImages counts them).
 class RobotProgram {
  public:
   // Throws nao::Error for a bad config/modules.json or parameter file (file and key named).
   explicit RobotProgram(const RobotProgramConfig& config = {});
-  ~RobotProgram();  // writes the `timing` summary when subscribed
+  ~RobotProgram();  // stops the cognition thread; writes the `timing` summary when subscribed
   RobotProgram(const RobotProgram&) = delete;
   RobotProgram& operator=(const RobotProgram&) = delete;
-  // One cycle: sensors and images in, motion, cognition per image, joint request out. False
-  // when the backend stopped (its stopReason says why).
+
+  // One cycle: sensors and images in, motion, joint request out, then cognition per image (in
+  // the threaded form: handed to the cognition thread). False when the backend stopped (its
+  // stopReason says why). Rethrows what a cognition module threw in the cognition thread.
   bool cycle(Backend& backend);
+
+  // Starts the threaded form (once; before the first cycle). While it runs, the cognition board
+  // and the figures below belong to the cognition thread: read them after stopCognitionThread.
+  void startCognitionThread();
+  // Stops and joins the cognition thread; images not yet taken are discarded. Idempotent; the
+  // destructor calls it.
+  void stopCognitionThread();
+  bool threaded() const { return threaded_ != nullptr; }
 
   // The motion cadence's board (sensors, motion state, and the requests a scenario sets while
   // no behaviour module provides them), and the cognition cadence's.
@@ -96,6 +120,13 @@ class RobotProgram {
   // scorer reads the estimates there; it must not write).
   using CognitionObserver = std::function<void(const CameraImage& image, const Blackboard& cognition)>;
   void setCognitionObserver(CognitionObserver observer) { observer_ = std::move(observer); }
+  // Threaded form: images replaced by a newer one of their camera before cognition took them.
+  std::array<long, kNumCameras> droppedImages() const;
+  // Cognition's time per image: wall and thread CPU (ms), summed, and the largest wall time.
+  struct CognitionTime {
+    double wallMsSum = 0, wallMsMax = 0, cpuMsSum = 0;
+  };
+  const CognitionTime& cognitionTime() const { return cognitionTime_; }
 
  private:
   using Copy = void (*)(const Blackboard& from, Blackboard& to);
@@ -103,7 +134,33 @@ class RobotProgram {
     RepresentationType type;
     Copy copy;
   };
-  void runCognition(const CameraImage& image);
+  // Cognition for one image, with motion's side of the exchange read from `exchange`.
+  void runCognition(const Blackboard& exchange, const CameraImage& image);
+  void cognitionLoop();
+  void handOff(const CameraImage& image);
+
+  // One image and the exchange as of the cycle it arrived in.
+  struct Job {
+    CameraImage image;
+    Blackboard exchange;
+  };
+  // The threaded form's hand-offs. Job buffers are swapped, never reallocated, once warm.
+  struct Threads {
+    std::thread cognition;
+    std::mutex jobsMutex;  // pending, full, stop, dropped
+    std::condition_variable wake;
+    std::array<Job, kNumCameras> pending;
+    std::array<bool, kNumCameras> full{};
+    bool stop = false;
+    std::array<long, kNumCameras> dropped{};
+    std::array<Job, kNumCameras> staging;  // motion thread's
+    Job working;                           // cognition thread's
+    std::mutex requestsMutex;              // requests, fresh
+    Blackboard requests;                   // cognition's side of the exchange, newest
+    bool fresh = false;
+    std::atomic<bool> failed{false};
+    std::exception_ptr error;  // set before failed
+  };
 
   Blackboard motionBoard_, cognitionBoard_;
   Pipeline motion_, cognition_;
@@ -114,6 +171,8 @@ class RobotProgram {
   CognitionObserver observer_;
   CycleTiming timing_;
   DebugChannels* debug_ = nullptr;
+  CognitionTime cognitionTime_;
+  std::unique_ptr<Threads> threaded_;
 };
 
 }  // namespace nao

@@ -10,6 +10,7 @@ nao_add_test(modules_test
                      ${CMAKE_CURRENT_LIST_DIR}/framework/fall_detector_module_test.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/framework/head_control_module_test.cpp
                      ${CMAKE_CURRENT_LIST_DIR}/framework/motion_engine_module_test.cpp
+                     ${CMAKE_CURRENT_LIST_DIR}/framework/nao_modules_test.cpp
              LIBS nao_controllers TIMEOUT 120)
 nao_add_test(cadence_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/framework/cadence_test.cpp LIBS nao_controllers TIMEOUT 120)
 

@@ -8,6 +8,8 @@
 // (packets built byte by byte on UDP, chest LED, return packets) and the answer latency.
 //
 // usage: lola_peer --nao-soccer BIN [--cycles N] [--json FILE]
+//        lola_peer --nao-soccer BIN --soak SECONDS [--cameras files:DIR] [--arg PROGRAM_ARG]...
+// (--cameras: the program's, default none; --arg: words added to the soak run's command line.)
 // Exit 0 when every check passed; the figures go to stdout (JSON) and the failures to stderr.
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -265,6 +267,8 @@ struct Child {
 // older OS), its socket in ROOT/tmp; --prefix ARG...: words before the program (its loader).
 std::string chrootDir;
 std::vector<std::string> prefix;
+std::string camerasArg = "none";       // --cameras: the program's --cameras
+std::vector<std::string> programArgs;  // --arg: more words for the program (the soak run's)
 
 Child spawn(const std::vector<std::string>& args, const std::string& log) {
   Child c;
@@ -613,7 +617,7 @@ Run start(const std::string& bin, const std::string& dir, const std::string& nam
   const std::string socket = r.socket.substr(chrootDir.size());
   std::vector<std::string> args = prefix;
   for (const std::string& a : {bin, std::string("run"), std::string("--backend"), std::string("nao"),
-                               std::string("--cameras"), std::string("none"), std::string("--lola-socket"), socket})
+                               std::string("--cameras"), camerasArg, std::string("--lola-socket"), socket})
     args.push_back(a);
   args.insert(args.end(), extra.begin(), extra.end());
   r.child = spawn(args, dir + "/" + name + ".stderr");
@@ -912,7 +916,7 @@ void stopRun(const std::string& bin, const std::string& dir, const std::string& 
 // the program ends with exit 0.
 void soakRun(const std::string& bin, const std::string& dir, double seconds) {
   check.phase = "soak";
-  Run run = start(bin, dir, "soak", {});
+  Run run = start(bin, dir, "soak", programArgs);
   Peer peer(run.fd, run.child);
   Robot robot;
   double tick = monotonic() + 0.05;
@@ -945,10 +949,13 @@ int main(int argc, char** argv) {
     else if (a == "--soak" && i + 1 < argc) soak = std::atof(argv[++i]);
     else if (a == "--chroot" && i + 1 < argc) chrootDir = argv[++i];
     else if (a == "--prefix" && i + 1 < argc) prefix.push_back(argv[++i]);
+    else if (a == "--cameras" && i + 1 < argc) camerasArg = argv[++i];
+    else if (a == "--arg" && i + 1 < argc) programArgs.push_back(argv[++i]);
     else {
       std::fprintf(stderr,
                    "usage: lola_peer --nao-soccer BIN [--cycles N] [--json FILE]\n"
-                   "       lola_peer --nao-soccer BIN --soak SECONDS [--chroot ROOT] [--prefix ARG]... [--json FILE]\n");
+                   "       lola_peer --nao-soccer BIN --soak SECONDS [--chroot ROOT] [--prefix ARG]... [--json FILE]\n"
+                   "                 [--cameras none|files:DIR] [--arg PROGRAM_ARG]...\n");
       return 2;
     }
   }

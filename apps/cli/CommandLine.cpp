@@ -217,6 +217,22 @@ CLI::Option* Command::choice(const std::string& name, std::string& value, std::v
       ->type_name(names);
 }
 
+CLI::Option* Command::choice(const std::string& name, std::string& value, std::vector<std::string> choices,
+                             const std::string& help, const std::string& otherName,
+                             std::function<std::string(const std::string&)> other) {
+  OptionSpec spec = specOf(OptionSpec::Kind::Choice);
+  spec.choices = choices;
+  const std::string names = join(choices, "|") + "|" + otherName;
+  return add(name, value, help + (value.empty() ? "" : " (default " + value + ")"), spec,
+             [choices, names, other](const std::string& s) {
+               for (const auto& c : choices)
+                 if (s == c) return std::string();
+               const std::string problem = other(s);
+               return problem.empty() ? problem : quoted(s) + ": " + problem + " (" + names + ")";
+             })
+      ->type_name(names);
+}
+
 CLI::Option* Command::numbers(const std::string& name, std::vector<double>& value,
                               std::vector<OptionSpec::Element> elements, const std::string& help) {
   auto* raw = raw_.emplace_back(std::make_unique<std::string>()).get();

@@ -76,6 +76,11 @@ class Command {
   CLI::Option* count(const std::string& name, int& value, int lo, int hi, const std::string& help);
   CLI::Option* choice(const std::string& name, std::string& value, std::vector<std::string> choices,
                       const std::string& help);
+  // One of `choices`, or a value `other` accepts (it returns the problem, or "" when fine):
+  // --cameras none|v4l2|files:DIR.
+  CLI::Option* choice(const std::string& name, std::string& value, std::vector<std::string> choices,
+                      const std::string& help, const std::string& otherName,
+                      std::function<std::string(const std::string&)> other);
   // Comma-separated numbers, each with its own name, unit and range: --pose X,Y,THETA.
   CLI::Option* numbers(const std::string& name, std::vector<double>& value, std::vector<OptionSpec::Element> elements,
                        const std::string& help);

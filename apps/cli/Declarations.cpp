@@ -13,6 +13,7 @@
 #include "robot/JointLimits.h"
 #include "robot/OutputFiles.h"
 #include "robot/Paths.h"
+#include "robot/nao/ImageFiles.h"
 #include "robot/nao/GameController.h"
 
 namespace nao::cli {
@@ -73,6 +74,18 @@ void debugOptions(Command& c, DebugOptions& d) {
   c.outputFile("--debug-out", d.out, "where --debug writes (default stderr)")->needs(channels);
 }
 
+// --cameras files:DIR: DIR/top/ and DIR/bottom/ each hold PNG or JPEG images.
+std::string cameraFilesProblem(const std::string& s) {
+  const std::string prefix = "files:";
+  if (s.rfind(prefix, 0) != 0) return "not a choice";
+  const std::string dir = s.substr(prefix.size());
+  if (dir.empty()) return "files: needs a folder";
+  for (const char* camera : {"top", "bottom"})
+    if (imageFilesIn(dir + "/" + camera).empty())
+      return dir + "/" + camera + "/ holds no PNG or JPEG images";
+  return "";
+}
+
 }  // namespace
 
 void CommandLine::declare() {
@@ -108,7 +121,9 @@ void CommandLine::declare() {
     c.numbers("--ball", r.ball, {{"X", "m", -20, 20}, {"Y", "m", -20, 20}}, "sim: a ball lying here (default: none)");
     c.onField("--ball", r.ball);
     c.choice("--cameras", r.cameras, {"on", "off", "none", "v4l2"},
-             "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2 (default v4l2)");
+             "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2|files:DIR (default v4l2; "
+             "files: the PNG/JPEG images of DIR/top/ and DIR/bottom/ in name order, looping, 30 Hz each)",
+             "files:DIR", cameraFilesProblem);
     c.outputFolder("--images", r.images, "sim: camera PNGs once a second and a field view into DIR");
     debugOptions(c, r.debug);
     NaoRunOptions& n = r.nao;
@@ -131,7 +146,7 @@ void CommandLine::declare() {
       const bool simValue = r.cameras == "on" || r.cameras == "off";
       if (!r.cameras.empty() && simValue != (r.backend == "sim"))
         return "--cameras: " + r.cameras + " is not a choice with --backend " + r.backend +
-               (r.backend == "sim" ? " (on or off)" : " (none or v4l2)");
+               (r.backend == "sim" ? " (on or off)" : " (none, v4l2 or files:DIR)");
       if (r.backend == "sim" && r.seconds > 3600) return std::string("--seconds: at most 3600 with --backend sim");
       return std::string();
     });

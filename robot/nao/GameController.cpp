@@ -403,19 +403,22 @@ void GameController::chestButton(double now) {
     log_("game: chest button ignored, the GameController decides");
     return;
   }
-  GameState& s = state_;
+  log_(pressChestButton(state_));
+}
+
+std::string pressChestButton(GameState& s) {
   s.fromGameController = false;
   if (s.state == gc::State::Initial) {
     s.state = gc::State::Playing;
     s.penalty = gc::Penalty::Manual;
-    log_("game: PLAYING, penalised (chest button)");
-  } else if (s.penalised()) {
-    s.penalty = gc::Penalty::None;
-    log_("game: unpenalised (chest button)");
-  } else {
-    s.penalty = gc::Penalty::Manual;
-    log_("game: penalised (chest button)");
+    return "game: PLAYING, penalised (chest button)";
   }
+  if (s.penalised()) {
+    s.penalty = gc::Penalty::None;
+    return "game: unpenalised (chest button)";
+  }
+  s.penalty = gc::Penalty::Manual;
+  return "game: penalised (chest button)";
 }
 
 bool GameController::sendReturnIfDue(double now, const gc::ReturnData& data) {

@@ -151,6 +151,11 @@ class GameController {
   bool warnedTeam_ = false;
 };
 
+// The chest button without a GameController (the rules' manual part): from INITIAL to
+// PLAYING, penalised; after that each press unpenalises or penalises. Returns what it did
+// (a log line).
+std::string pressChestButton(GameState& state);
+
 // The chest LED colour the rules ask for (RGB 0..1): off in INITIAL and FINISHED, blue READY,
 // yellow SET, green PLAYING, red when penalised, cyan STANDBY.
 std::array<double, 3> chestColour(const GameState& state);

@@ -65,11 +65,14 @@ NaoBackend::NaoBackend(NaoBackendConfig config, Log log)
   client_.connect(config_.connectTimeout, [] { return g_signal.load() != 0; });
   log_("lola: connected");
   lastPacket_ = now();
-  if (config_.cameras) {
+  if (config_.sources[0] || config_.sources[1]) {
+    cameras_ = config_.sources;
+  } else if (config_.cameras) {
     auto device = config_.v4l2 ? config_.v4l2 : kernelV4l2Device();
     for (int c = 0; c < kNumCameras; ++c) {
-      cameras_[c] = std::make_unique<V4l2Camera>(device, config_.camera[c], log_);
-      cameras_[c]->open(monotonic());  // a failure is logged; grab() retries
+      auto camera = std::make_shared<V4l2Camera>(device, config_.camera[c], log_);
+      camera->open(monotonic());  // a failure is logged; grab() retries
+      cameras_[c] = std::move(camera);
     }
   }
 }
@@ -213,10 +216,38 @@ void NaoBackend::sendRequest(const JointRequest& joints, const LedRequest& leds)
       break;
     }
   answer(safety_.apply(joints));
+  answered();
+}
+
+void NaoBackend::answerSoftInPlace() {
+  if (!awaiting_) return;
+  awaiting_ = false;
+  answer(safety_.softInPlace());
+  safety_.restartRamp();  // the ramp starts from the angles measured when the program takes over
+  answered();
+}
+
+void NaoBackend::answered() {
   const double answerMs = (now() - receivedAt_) * 1000;
+  ++stats_.answered;
   stats_.maxAnswerMs = std::max(stats_.maxAnswerMs, answerMs);
   stats_.sumAnswerMs += answerMs;
   if (answerMs > kCycleTime * 1000) ++stats_.late;
+  auto& h = stats_.answerMsHistogram;
+  ++h[std::min(h.size() - 1, static_cast<std::size_t>(std::max(0.0, answerMs) / 0.05))];
+}
+
+double NaoBackend::Stats::answerMsQuantile(double q) const {
+  std::uint64_t total = 0;
+  for (auto n : answerMsHistogram) total += n;
+  if (total == 0) return 0;
+  const auto wanted = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(total)));
+  std::uint64_t seen = 0;
+  for (std::size_t i = 0; i < answerMsHistogram.size(); ++i) {
+    seen += answerMsHistogram[i];
+    if (seen >= std::max<std::uint64_t>(wanted, 1)) return (static_cast<double>(i) + 1) * 0.05;  // the bin's upper end
+  }
+  return static_cast<double>(answerMsHistogram.size()) * 0.05;
 }
 
 }  // namespace nao

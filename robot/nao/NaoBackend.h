@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "robot/Backend.h"
+#include "robot/nao/CameraSource.h"
 #include "robot/nao/LolaClient.h"
 #include "robot/nao/LolaPacket.h"
 #include "robot/nao/Safety.h"
@@ -27,6 +28,8 @@ struct NaoBackendConfig {
   bool cameras = true;
   std::array<V4l2CameraConfig, kNumCameras> camera = defaultCameras();
   std::shared_ptr<V4l2Device> v4l2;  // null: the kernel
+  // Set: the images come from these (FileCamera) instead of the V4L2 devices.
+  std::array<std::shared_ptr<CameraSource>, kNumCameras> sources;
 
   // Top: /dev/video-top 640x480, rotated (mounted upside down); bottom: /dev/video-bottom 320x240.
   static std::array<V4l2CameraConfig, kNumCameras> defaultCameras();
@@ -46,6 +49,9 @@ class NaoBackend : public Backend {
   bool takeImage(CameraId camera, CameraImage& image) override;
   void sendRequest(const JointRequest& joints, const LedRequest& leds) override;
   std::string stopReason() const override { return stopReason_; }
+  // Answers the packet waitForSensors returned soft in place, without a program's request and
+  // without starting the stiffness ramp: while the robot program is still being built.
+  void answerSoftInPlace();
 
   // SIGINT / SIGTERM: the next cycles answer soft, then waitForSensors returns false.
   static void installSignalHandlers();
@@ -59,14 +65,20 @@ class NaoBackend : public Backend {
   Safety& safety() { return safety_; }
   double now() const;  // backend seconds since start
 
+  // cycles: packets handed to the program; answered: of those, answered (late: after 12 ms).
   struct Stats {
-    std::uint64_t packets = 0, cycles = 0, corrupt = 0, staleEvents = 0, skipped = 0, late = 0, dropped = 0;
+    std::uint64_t packets = 0, cycles = 0, answered = 0, corrupt = 0, staleEvents = 0, skipped = 0, late = 0,
+                  dropped = 0;
     double maxAnswerMs = 0, sumAnswerMs = 0;
+    std::array<std::uint32_t, 1001> answerMsHistogram{};  // 0.05 ms bins; the last: 50 ms and more
+    // The answer time (ms from a packet's arrival to its answer) that q of the answers kept.
+    double answerMsQuantile(double q) const;
   };
   const Stats& stats() const { return stats_; }
 
  private:
   void answer(const JointRequest& joints);
+  void answered();
   bool finish(const std::string& reason, bool clean);
   static double monotonic();
 
@@ -74,7 +86,7 @@ class NaoBackend : public Backend {
   Log log_;
   Safety safety_;
   lola::LolaClient client_;
-  std::array<std::unique_ptr<V4l2Camera>, kNumCameras> cameras_;
+  std::array<std::shared_ptr<CameraSource>, kNumCameras> cameras_;
   double start_ = 0;
   double lastPacket_ = 0, receivedAt_ = 0;
   bool stale_ = false, awaiting_ = false, haveInfo_ = false;

@@ -40,6 +40,9 @@ class Safety {
   void fault(SafetyFault kind, const std::string& reason);
   // Clears a User fault; the ramp starts again.
   void resume(const std::string& why);
+  // The ramp (not yet run) starts from the angles measured last: while nothing was sent but
+  // soft answers, the limp joints may have moved.
+  void restartRamp() { startRamp(); }
 
   // What to send for the program's request this cycle (advances the ramp one cycle).
   JointRequest apply(const JointRequest& requested);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "robot/CameraImage.h"
+#include "robot/nao/CameraSource.h"
 
 namespace nao {
 
@@ -55,11 +56,11 @@ struct V4l2CameraConfig {
   double reopenInterval = 1.0;  // s between attempts to open a failed device
 };
 
-class V4l2Camera {
+class V4l2Camera : public CameraSource {
  public:
   using Log = std::function<void(const std::string&)>;
   V4l2Camera(std::shared_ptr<V4l2Device> device, V4l2CameraConfig config, Log log = {});
-  ~V4l2Camera();
+  ~V4l2Camera() override;
   V4l2Camera(const V4l2Camera&) = delete;
   V4l2Camera& operator=(const V4l2Camera&) = delete;
 
@@ -71,7 +72,7 @@ class V4l2Camera {
   // Non-blocking: true when a new frame arrived since the last call; `image` then holds the
   // newest one (older ready frames are dropped), timestamp = the kernel's capture time in
   // CLOCK_MONOTONIC seconds. now: CLOCK_MONOTONIC seconds, for the recovery timing.
-  bool grab(CameraImage& image, double now);
+  bool grab(CameraImage& image, double now) override;
 
   bool streaming() const { return streaming_; }
   int width() const { return width_; }

@@ -4,13 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <thread>
 
 #include "controllers/RobotProgram.h"
 #include "controllers/Walk.h"
 #include "controllers/modules/ExposureCameraMatrixProvider.h"
 #include "controllers/modules/FrameHistoryProvider.h"
 #include "representations/infrastructure/CurrentImage.h"
+#include "representations/infrastructure/FrameHistory.h"
 #include "robot/ForwardKinematics.h"
 #include "robot/ModuleRegistry.h"
 #include "tests/support/ModuleHarness.h"
@@ -37,6 +42,43 @@ class CountingBehavior : public Module<CountingBehavior, Requires<CurrentImage, 
   }
 };
 NAO_REGISTER_MODULE(CountingBehavior);
+
+// For the threaded form: a behaviour slower than the camera. Each run records how many answers
+// motion sent meanwhile and the newest motion cycle in the exchange it got with the image.
+class SlowBehavior : public Module<SlowBehavior, Requires<CurrentImage, FrameHistory>,
+                                   Provides<MotionRequest, HeadMotionRequest>, Cadence::Cognition> {
+ public:
+  explicit SlowBehavior(const ModuleContext& = {}) {}
+  static inline std::atomic<int>* answers = nullptr;  // the backend's count
+  static inline int runs = 0, minAnswersDuring = 1 << 30;
+  static inline double maxSnapshotLag = 0;  // newest history entry vs the delivering cycle, s
+
+ private:
+  void update() override {
+    ++runs;
+    // The image was exposed 5 ms before the cycle that delivered it; the exchange is that cycle's.
+    const double delivered = in<CurrentImage>().image.timestamp + 0.005;
+    maxSnapshotLag = std::max(maxSnapshotLag, std::abs(in<FrameHistory>().entries.back().time - delivered));
+    const int before = answers->load();
+    std::this_thread::sleep_for(std::chrono::milliseconds(60));
+    minAnswersDuring = std::min(minAnswersDuring, answers->load() - before);
+    MotionRequest& r = out<MotionRequest>();
+    r.motion = MotionType::Walk;
+    r.walkSpeed = Pose2(0.01 * runs, 0, 0);
+    out<HeadMotionRequest>() = HeadMotionRequest{};
+  }
+};
+NAO_REGISTER_MODULE(SlowBehavior);
+
+class ThrowingBehavior : public Module<ThrowingBehavior, Requires<CurrentImage>, Provides<MotionRequest>,
+                                       Cadence::Cognition> {
+ public:
+  explicit ThrowingBehavior(const ModuleContext& = {}) {}
+
+ private:
+  void update() override { throw std::runtime_error("behaviour failed"); }
+};
+NAO_REGISTER_MODULE(ThrowingBehavior);
 
 namespace {
 
@@ -160,6 +202,93 @@ TEST(Cadences, CameraMatrixAtExposureTime) {
   const CameraMatrix atCycle = computeCameraMatrix(late, robotToTorso(late, 0.01, 0.05), CameraId::Top,
                                                    CameraCalibration{}, CameraIntrinsics::fromFovY(64, 48));
   EXPECT_GT((m.matrix.pose.linear() - atCycle.pose.linear()).norm(), 5e-3);
+}
+
+// TurningHeadBackend at a wall-clock pace (like LoLA's, faster), counting answers for the
+// threads to read.
+class PacedBackend : public TurningHeadBackend {
+ public:
+  static constexpr auto kPeriod = std::chrono::milliseconds(4);
+  bool waitForSensors(SensorFrame& frame) override {
+    next_ += kPeriod;
+    std::this_thread::sleep_until(next_);
+    return TurningHeadBackend::waitForSensors(frame);
+  }
+  void sendRequest(const JointRequest& j, const LedRequest& l) override {
+    TurningHeadBackend::sendRequest(j, l);
+    answerCount.fetch_add(1);
+  }
+  std::atomic<int> answerCount{0};
+
+ private:
+  std::chrono::steady_clock::time_point next_ = std::chrono::steady_clock::now();
+};
+
+TEST(CadenceThreads, MotionGoesOnWhileASlowCognitionRunsAndNewestImagesWin) {
+  RobotProgramConfig config;
+  config.providers = {{"MotionRequest", "SlowBehavior"}, {"HeadMotionRequest", "SlowBehavior"}};
+  RobotProgram program(config);
+  PacedBackend backend;
+  backend.cycles = 150;  // 0.6 s; an image every 3rd cycle (12 ms), cognition takes 60 ms each
+  SlowBehavior::answers = &backend.answerCount;
+  SlowBehavior::runs = 0;
+  SlowBehavior::minAnswersDuring = 1 << 30;
+  SlowBehavior::maxSnapshotLag = 0;
+  program.startCognitionThread();
+  ASSERT_TRUE(program.threaded());
+  while (program.cycle(backend)) {
+  }
+  program.stopCognitionThread();
+  EXPECT_EQ(backend.answers, backend.cycles);
+  ASSERT_GE(SlowBehavior::runs, 3);
+  // Motion answered on (at 4 ms a cycle: about 15 answers) while each 60 ms cognition run went on.
+  EXPECT_GE(SlowBehavior::minAnswersDuring, 5);
+  // Each image came with the exchange of the cycle it arrived in, not a later one.
+  EXPECT_LT(SlowBehavior::maxSnapshotLag, 1e-9);
+  // Every image was processed or dropped for a newer one, but the one still waiting at the stop.
+  const long dropped = program.droppedImages()[0];
+  const long runs = program.cognitionRuns()[0];
+  EXPECT_EQ(runs, SlowBehavior::runs);
+  EXPECT_GT(dropped, runs);  // 5 images per run arrive: most are dropped
+  EXPECT_LE(runs + dropped, backend.delivered);
+  EXPECT_GE(runs + dropped, backend.delivered - 1);
+  EXPECT_EQ(program.droppedImages()[1], 0);
+  // Cognition's requests reached motion: a walk, at most as fast as the last run asked.
+  const MotionRequest& r = program.blackboard().read<MotionRequest>();
+  EXPECT_EQ(r.motion, MotionType::Walk);
+  EXPECT_GT(r.walkSpeed.x, 0);
+  EXPECT_LE(r.walkSpeed.x, 0.01 * runs + 1e-12);
+  EXPECT_GT(program.cognitionTime().wallMsSum, 55.0 * runs);
+}
+
+TEST(CadenceThreads, WithoutImagesTheThreadIdlesAndStops) {
+  RobotProgram program(withBehavior());
+  PacedBackend backend;
+  backend.cycles = 2;
+  program.startCognitionThread();
+  while (program.cycle(backend)) {
+  }
+  program.stopCognitionThread();
+  program.stopCognitionThread();  // idempotent
+  EXPECT_EQ(program.cognitionRuns()[0] + program.cognitionRuns()[1], 0);
+  EXPECT_EQ(program.blackboard().read<MotionRequest>().motion, MotionType::Stand);
+}
+
+TEST(CadenceThreads, ACognitionFailureEndsTheRunAtMotionsNextCycle) {
+  RobotProgramConfig config;
+  config.providers = {{"MotionRequest", "ThrowingBehavior"}, {"HeadMotionRequest", ""}};
+  RobotProgram program(config);
+  PacedBackend backend;
+  backend.cycles = 100;
+  program.startCognitionThread();
+  try {
+    while (program.cycle(backend)) {
+    }
+    ADD_FAILURE() << "the behaviour's exception did not reach motion";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "behaviour failed");
+  }
+  EXPECT_LT(backend.answers, 100);
 }
 
 TEST(FrameHistoryProvider, KeepsHalfASecondAndRestartsWhenTimeGoesBack) {

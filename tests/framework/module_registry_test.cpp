@@ -63,9 +63,10 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "CameraMatrixProvider", "CameraVision",
-                                     "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider", "HeadControl",
-                                     "MotionEngine", "SelfLocalization", "TorsoMatrixProvider"}));
+  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "CameraMatrixProvider",
+                                     "CameraVision", "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
+                                     "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "SelfLocalization",
+                                     "TorsoMatrixProvider"}));
 }
 
 std::string providersError(const std::string& text) {
@@ -111,9 +112,10 @@ TEST(ModuleRegistry, BadModulesJsonIsOneLineNamingTheKey) {
 TEST(RobotProgram, OrderFollowsTheDeclarations) {
   RobotProgram program;
   // Motion in dependency order, then cognition.
-  EXPECT_EQ(program.moduleOrder(), (Names{"TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "HeadControl",
-                                          "MotionEngine", "FrameHistoryProvider", "ExposureCameraMatrixProvider", "CameraVision",
-                                          "SelfLocalization", "BallLocator", "BehaviorControl"}));
+  EXPECT_EQ(program.moduleOrder(),
+            (Names{"ButtonStateProvider", "TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "HeadControl",
+                   "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
+                   "ExposureCameraMatrixProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl"}));
 }
 
 TEST(RobotProgram, AProviderRemovedByConfigurationBecomesAnInput) {

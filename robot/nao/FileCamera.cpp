@@ -1,0 +1,67 @@
+#include "robot/nao/FileCamera.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace nao {
+
+FileCamera::FileCamera(CameraId camera, std::vector<std::string> files, Decoder decode, double start, double period,
+                       Log log)
+    : camera_(camera), files_(std::move(files)), decode_(std::move(decode)), period_(period), due_(start),
+      log_(std::move(log)) {
+  if (!files_.empty()) thread_ = std::thread([this] { decodeLoop(); });
+}
+
+FileCamera::~FileCamera() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_one();
+  if (thread_.joinable()) thread_.join();
+}
+
+void FileCamera::decodeLoop() {
+  std::size_t index = 0, brokenCount = 0;
+  std::vector<bool> broken(files_.size(), false);  // logged once, then left out
+  CameraImage image;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stop_ || !ready_; });
+      if (stop_) return;
+    }
+    const std::size_t i = index;
+    index = (index + 1) % files_.size();
+    if (broken[i]) continue;
+    try {
+      image = decode_(files_[i], camera_);
+      image.camera = camera_;
+    } catch (const std::exception& e) {
+      broken[i] = true;
+      if (log_) log_(std::string("camera ") + cameraName(camera_) + ": skipped " + e.what());
+      if (++brokenCount == files_.size()) return;  // nothing left to show
+      continue;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::swap(next_, image);
+    ready_ = true;
+  }
+}
+
+bool FileCamera::grab(CameraImage& image, double now) {
+  if (now < due_) return false;
+  {
+    std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock() || !ready_) return false;  // not decoded yet: the next cycle
+    std::swap(image, next_);
+    ready_ = false;
+  }
+  wake_.notify_one();
+  image.timestamp = due_;
+  // After a stall (a busy machine) the next frame is due a period from now, not in a burst.
+  due_ = std::max(due_ + period_, now + period_ * 0.5);
+  return true;
+}
+
+}  // namespace nao

@@ -1,0 +1,52 @@
+#pragma once
+// A camera made of image files (--cameras files:DIR): the PNG and JPEG files of one folder in
+// name order, looping, one frame per period, to replay a recording or to run the NAO backend's
+// cognition without a camera. Frames are decoded ahead in a thread of the camera's own, so
+// grab() only swaps a ready buffer out, as V4l2Camera's grab() copies a dequeued one: a slow
+// decode never holds up the motion cycle that takes the image. The files: imageFilesIn
+// (robot/nao/ImageFiles.h).
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "robot/Backend.h"
+#include "robot/nao/CameraSource.h"
+
+namespace nao {
+
+class FileCamera : public CameraSource {
+ public:
+  // Reads an image file (throws nao::Error naming it when it cannot); the robot program's
+  // image decoding lives outside robot/ (sim::readImage in nao-soccer).
+  using Decoder = std::function<CameraImage(const std::string& path, CameraId camera)>;
+  using Log = std::function<void(const std::string&)>;
+
+  // The first frame is due at `start` (CLOCK_MONOTONIC seconds), then one every period.
+  FileCamera(CameraId camera, std::vector<std::string> files, Decoder decode, double start,
+             double period = kCameraPeriod, Log log = {});
+  ~FileCamera() override;
+  FileCamera(const FileCamera&) = delete;
+  FileCamera& operator=(const FileCamera&) = delete;
+
+  // A frame when one is due and decoded; its timestamp is the time it was due.
+  bool grab(CameraImage& image, double now) override;
+
+ private:
+  void decodeLoop();
+
+  CameraId camera_;
+  std::vector<std::string> files_;
+  Decoder decode_;
+  double period_, due_;
+  Log log_;
+  std::mutex mutex_;  // ready_, next_, stop_
+  std::condition_variable wake_;
+  bool ready_ = false, stop_ = false;
+  CameraImage next_;
+  std::thread thread_;
+};
+
+}  // namespace nao

@@ -1,0 +1,129 @@
+// `run --backend nao` with the full cognition, end to end: the project's LoLA peer
+// (tests/lola_peer.cpp, a separate process judging every answer against the 12 ms cycle) runs
+// the real nao-soccer with --cameras files:DIR, where DIR holds frames the simulator rendered
+// here (`nao-soccer render`), fed through the NAO backend's camera hand-off at 30 Hz each.
+// Motion answers every LoLA packet in time while cognition runs on both cameras in its own
+// thread; an image cognition had no time for is dropped and counted. And the program is built
+// for the head LoLA names (its parameter overlay).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/RunCommand.h"
+
+namespace nao {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool quick() { return std::getenv("NAO_TEST_QUICK") != nullptr; }  // the sanitizer run
+
+nlohmann::json readJson(const fs::path& path) {
+  std::ifstream f(path);
+  EXPECT_TRUE(f.good()) << path;
+  return f ? nlohmann::json::parse(f) : nlohmann::json::object();
+}
+
+TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "nao_cognition_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "frames" / "top");
+  fs::create_directories(dir / "frames" / "bottom");
+  // Three views near the own penalty area: lines, the penalty mark and a ball in front.
+  const char* poses[] = {"-3.2,-0.5,0", "-3.0,0.8,-20", "-2.6,-1.2,25"};
+  for (int i = 0; i < 3; ++i)
+    for (const char* camera : {"top", "bottom"}) {
+      const std::string out = (dir / "frames" / camera / ("frame" + std::to_string(i) + ".png")).string();
+      const auto r = test::runCommand(std::string("render --camera ") + camera + " --pose " + poses[i] +
+                                          " --head 0,10 --ball -2.2,-0.2 --out " + out,
+                                      120);
+      ASSERT_EQ(r.code, 0) << r.out;
+    }
+
+  // LoLA time: 30 s (10 s in the sanitizer run); then SIGTERM, and the program writes its JSON.
+  const int seconds = quick() ? 10 : 30;
+  const fs::path runJson = dir / "run.json", peerJson = dir / "peer.json";
+  const std::string cmd = std::string(LOLA_PEER) + " --nao-soccer " + NAO_BINARY + " --soak " + std::to_string(seconds) +
+                          " --cameras files:" + (dir / "frames").string() + " --arg --json --arg " + runJson.string() +
+                          " --json " + peerJson.string() + " 2>&1";
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, p)) out += buffer;
+  const int status = pclose(p);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+
+  // The peer's own measurement: every answer within the cycle, every check passed.
+  const nlohmann::json peer = readJson(peerJson);
+  EXPECT_EQ(peer.value("late_answers", -1), 0) << out;
+  EXPECT_EQ(peer.value("checks_failed", -1), 0) << out;
+  EXPECT_GE(peer.value("normal_cycles", 0), seconds * 80);
+
+  // The program's: the same, from its side, and cognition on both cameras.
+  const nlohmann::json run = readJson(runJson);
+  ASSERT_TRUE(run.contains("lola")) << run.dump();
+  const nlohmann::json& lola = run["lola"];
+  EXPECT_EQ(lola["late"], 0);
+  EXPECT_EQ(lola["answered"], lola["cycles"]);
+  EXPECT_LT(lola["cycle_ms_p99"].get<double>(), 12.0);
+  EXPECT_TRUE(run["clean_stop"].get<bool>());
+  // The frames come at 30 Hz per camera for as long as LoLA ran: each was processed, or dropped
+  // because a newer one of its camera was waiting.
+  const double expected = lola["cycles"].get<double>() * 0.012 * 30;
+  for (const char* camera : {"top", "bottom"}) {
+    const long processed = run["images_processed"][camera].get<long>();
+    const long dropped = run["images_dropped"][camera].get<long>();
+    EXPECT_GT(processed, expected / 2) << camera << ": cognition kept up with less than half of the frames";
+    EXPECT_GE(processed + dropped, 0.85 * expected) << camera;
+    EXPECT_LE(processed + dropped, 1.05 * expected + 2) << camera;
+    std::printf("nao cognition: %s %ld processed, %ld dropped of %.0f frames\n", camera, processed, dropped, expected);
+  }
+  EXPECT_EQ(run["images_skipped"], 0);
+  EXPECT_GT(run["cognition"]["ms_per_image"]["mean"].get<double>(), 0);
+  std::printf("nao cognition: lola %s, cognition %s, motion CPU %s\n", lola.dump().c_str(), run["cognition"].dump().c_str(),
+              run["cpu_ms_per_cycle"].dump().c_str());
+  // The program was built for the head LoLA named (its per-robot parameters and calibration).
+  EXPECT_EQ(run["robot"]["head_id"], "P0000073A07S8AF00027");
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+// The program is built for the head LoLA's first packet names: that head's parameter overlay
+// (config/robots/<head id>/) is read. Proof: a data root whose overlay for the peer's head holds
+// an unknown key stops the start with one line naming that file.
+TEST(NaoCognition, TheProgramIsBuiltWithTheOverlayOfTheHeadLolaNames) {
+  const fs::path home = fs::path(::testing::TempDir()) / "nao_cognition_overlay";
+  fs::remove_all(home);
+  fs::create_directories(home / "models" / "vision");
+  fs::copy(fs::path(NAO_SOURCE_DIR) / "config", home / "config", fs::copy_options::recursive);
+  fs::copy_file(fs::path(NAO_SOURCE_DIR) / "models/vision/ball_classifier.yml",
+                home / "models/vision/ball_classifier.yml");
+  const fs::path overlay = home / "config/robots/P0000073A07S8AF00027/HeadControl.json";  // lola_peer's head
+  fs::create_directories(overlay.parent_path());
+  std::ofstream(overlay) << "{\"bogus\": 1}\n";
+  const fs::path peerJson = home / "peer.json";
+  const std::string cmd = "NAO_SOCCER_HOME=" + home.string() + " " + LOLA_PEER + " --nao-soccer " + NAO_BINARY +
+                          " --soak 2 --json " + peerJson.string() + " 2>&1";
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, p)) out += buffer;
+  pclose(p);  // the peer fails: the program ended at the start
+  EXPECT_NE(out.find("run: parameters with this head's " + overlay.parent_path().string() + "/"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("nao-soccer run: " + overlay.string() + ": bogus: unknown parameter"), std::string::npos) << out;
+  const nlohmann::json peer = readJson(peerJson);
+  if (peer.contains("work_dir")) fs::remove_all(peer["work_dir"].get<std::string>());
+  if (!HasFailure()) fs::remove_all(home);
+}
+
+}  // namespace
+}  // namespace nao
