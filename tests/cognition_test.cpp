@@ -14,6 +14,7 @@
 #include "perception/FieldDimensions.h"
 #include "representations/perception/CameraPercepts.h"
 #include "robot/Paths.h"
+#include "scenarios/SimRun.h"
 #include "sim/CameraRenderer.h"
 #include "sim/Lighting.h"
 #include "sim/SimBackend.h"
@@ -80,6 +81,40 @@ TEST(Cognition, TheRobotProgramSeesTheFieldLinesWhereTheyAre) {
   EXPECT_GE(perceptSets, 40);
   EXPECT_GT(lines, 40) << "the robot program saw hardly any lines";
   EXPECT_LE(offLines, lines / 20) << offLines << " of " << 2 * lines << " line ends off every field line";
+}
+
+// The acceptance's walk in small: the robot program walks from the side line to a commanded
+// pose by its own localization (the behaviour never sees the truth); the simulator's truth
+// says where it ended. Cameras at 30 Hz each, all of it in the robot program's cognition.
+TEST(Cognition, TheRobotProgramWalksToACommandedPoseByItsOwnLocalization) {
+  sim::SimRunOptions o;
+  o.field = FieldDimensions::load(dataPath("config/field_dimensions.json"));
+  o.pose = Eigen::Vector3d(-3.2, -3.0, M_PI / 2);
+  o.seconds = 22;
+  o.goTo = Pose2(-1.8, -1.6, 0);
+  o.ball = Eigen::Vector2d(-2.2, -1.0);
+  o.seed = 5;
+  o.lighting = sim::Lighting::parse("default", dataPath("config/lighting.json"));
+  const sim::SimRunResult r = sim::runSim(o);
+  ASSERT_FALSE(r.fell);
+  const double position = (r.finalPose.head<2>() - Eigen::Vector2d(o.goTo->x, o.goTo->y)).norm();
+  const double heading = std::abs(Pose2::wrap(r.finalPose.z() - o.goTo->theta));
+  std::printf("goto: ended %.3f m and %.2f deg from the target; localization error median %.3f m over %zu images; "
+              "ball error median %.3f m over %zu\n",
+              position, heading * 180 / M_PI, sim::median(r.positionErrors), r.positionErrors.size(),
+              sim::median(r.ballErrors), r.ballErrors.size());
+  EXPECT_LT(position, 0.10);
+  EXPECT_LT(heading, 5 * M_PI / 180);
+  // Localized nearly all the time, and close (the robot walked 1.9 m and turned 90 degrees).
+  EXPECT_GT(r.validRuns, r.cognitionRunsTotal * 8 / 10);
+  EXPECT_LT(sim::median(r.positionErrors), 0.05);
+  EXPECT_LT(sim::median(r.headingErrors), 2 * M_PI / 180);
+  // The ball on its way was seen and modelled where it is (robot frame, against the truth).
+  ASSERT_GT(r.ballErrors.size(), 30u);
+  EXPECT_LT(sim::median(r.ballErrors), 0.10);
+  // Both cameras at 30 Hz through the cognition.
+  EXPECT_GE(r.imagesProcessedTop, static_cast<long>(29.5 * o.seconds));
+  EXPECT_GE(r.imagesProcessedBottom, static_cast<long>(29.5 * o.seconds));
 }
 
 }  // namespace
