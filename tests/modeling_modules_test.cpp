@@ -10,6 +10,7 @@
 #include "controllers/behavior/LookActive.h"
 #include "controllers/modules/BallLocator.h"
 #include "controllers/modules/BehaviorControl.h"
+#include "controllers/modules/CameraVision.h"
 #include "controllers/modules/SelfLocalization.h"
 #include "perception/CameraModel.h"
 #include "robot/Paths.h"
@@ -285,6 +286,37 @@ TEST(BehaviorControlModule, TheHeadTracksAKnownBallWithTheCameraThatSeesItBest) 
   f.run(f.pose, BehaviorCommand{});
   EXPECT_EQ(f.h.get<HeadMotionRequest>().camera, CameraId::Top);
   EXPECT_GT(f.h.get<HeadMotionRequest>().maxSpeed, 0);  // limited for the images' sake
+}
+
+TEST(CameraVisionModule, AnImpossibleCameraMatrixIsSkippedNotSeenThrough) {
+  ModuleHarness h("CameraVision", fieldContext());
+  CurrentImage current;
+  CameraImage& image = current.image;
+  image.camera = CameraId::Bottom;
+  image.timestamp = 1.0;
+  image.width = 320;
+  image.height = 240;
+  image.yuyv.assign(static_cast<std::size_t>(image.width) * image.height * 2, 128);
+  ImageCameraMatrix m;
+  m.camera = CameraId::Bottom;
+  m.timestamp = 1.0;
+  m.valid = true;
+  m.matrix = bottomCamera();
+  m.matrix.intrinsics = CameraIntrinsics::fromFovY(image.width, image.height);
+  h.fix(current).fix(m).run();
+  EXPECT_TRUE(h.get<CameraPercepts>().processed);
+  // Under the ground, NaN, not a rotation: each refused, the percept set marked unprocessed.
+  for (int k = 0; k < 3; ++k) {
+    ImageCameraMatrix bad = m;
+    if (k == 0) bad.matrix.pose.translation().z() = -0.3;
+    if (k == 1) bad.matrix.pose.linear()(0, 0) = std::nan("");
+    if (k == 2) bad.matrix.pose.linear() *= 2.0;
+    h.fix(bad).run();
+    const CameraPercepts& p = h.get<CameraPercepts>();
+    EXPECT_FALSE(p.processed) << k;
+    EXPECT_TRUE(p.lines.empty() && !p.ball.seen) << k;
+    EXPECT_EQ(p.timestamp, 1.0);
+  }
 }
 
 TEST(LookActive, LooksWhereTheFeaturesShrinkTheUncertaintyMost) {
