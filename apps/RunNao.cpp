@@ -21,6 +21,8 @@
 #include <memory>
 
 #include "controllers/RobotProgram.h"
+#include "representations/modeling/BallModel.h"
+#include "representations/modeling/RobotPose.h"
 #include "perception/calibration/CalibrationStore.h"
 #include "perception/FieldDimensions.h"
 #include "perception/vision/BallClassifier.h"
@@ -347,6 +349,17 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
         {"robot", {{"body_id", backend.robotInfo().bodyId}, {"head_id", backend.robotInfo().headId}}},
         {"game", {{"state", gc::stateName(g.state)}, {"penalised", g.penalised()},
                   {"from_gamecontroller", g.fromGameController}, {"rejected_packets", gameController.rejected()}}}};
+    // What the robot believed at the end (the cognition thread has stopped): no truth here.
+    if (program && program->cognitionBoard().has<RobotPose>()) {
+      const RobotPose& pose = program->cognitionBoard().read<RobotPose>();
+      j["final_estimated_pose"] = {pose.pose.x, pose.pose.y, pose.pose.theta * 180 / M_PI};
+      j["final_estimate_valid"] = pose.valid;
+      j["final_estimate_sigma_m"] = pose.sigmaTranslation();
+    }
+    if (program && program->cognitionBoard().has<BallModel>()) {
+      const BallModel& ball = program->cognitionBoard().read<BallModel>();
+      j["final_ball"] = {{"valid", ball.valid}, {"lost", ball.lost}, {"position", {ball.position.x(), ball.position.y()}}};
+    }
     writeJson(options.common.json, j);
   }
   return backend.stoppedCleanly() ? 0 : 1;
