@@ -21,6 +21,7 @@ int evalGetUpCommand(const EvalMotionOptions& o);
 int walkCommand(const WalkOptions& o);
 int kickCommand(const KickOptions& o);
 int trainBallCommand(const TrainBallOptions& o);
+int trainFrictionCommand(const TrainFrictionOptions& o);
 int calibrateCommand(const CalibrateOptions& o);
 int modulesCommand(const ModulesOptions& o);
 

@@ -32,6 +32,7 @@ void bind(CommandLine& cl) {
   to("walk", nao::cli::walkCommand, o.walk);
   to("kick", nao::cli::kickCommand, o.kick);
   to("train ball", nao::cli::trainBallCommand, o.trainBall);
+  to("train friction", nao::cli::trainFrictionCommand, o.trainFriction);
   to("calibrate", nao::cli::calibrateCommand, o.calibrate);
   to("modules", nao::cli::modulesCommand, o.modules);
 }

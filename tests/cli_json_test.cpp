@@ -53,6 +53,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "walk") return "walk --vx 200 --seconds 1";
   if (path == "kick") return "kick --trials 1";
   if (path == "train ball") return "train ball --scenes 5 --lightings 1 --iterations 2 --out " + dir + "/ball.yml";
+  if (path == "train friction") return "train friction --rolls 2 --max-speed 1";
   if (path == "calibrate") return "calibrate";
   if (path == "modules") return "modules";
   return "";
@@ -75,7 +76,7 @@ TEST(CliJson, EveryCommandPrintsOnlyJsonOnStdout) {
     EXPECT_FALSE(fs::exists(fs::current_path() / "MUJOCO_LOG.TXT"));
     ++checked;
   }
-  EXPECT_EQ(checked, 16);
+  EXPECT_EQ(checked, 17);
 }
 
 }  // namespace

@@ -251,7 +251,7 @@ void CommandLine::declare() {
     c.flag("--randomize", k.randomize, "a 'foreign' robot per trial: masses +-5%, joint offsets +-1 deg, friction 0.6-1");
   }
   {
-    CLI::App* train = group("train", "train a model from simulated images: ball");
+    CLI::App* train = group("train", "fit a model to the simulator: ball (classifier), friction (ball roll)");
     TrainBallOptions& t = o.trainBall;
     Command& c = leaf(train, "ball", "the ball classifier (HOG + multi-layer perceptron) from simulated images", t.common);
     seedJsonField(c);
@@ -268,6 +268,19 @@ void CommandLine::declare() {
              return in.empty() ? in : "'" + s + "': " + in;
            });
     c.outputFile("--out", t.out, "the model to write (default models/vision/ball_classifier.yml in the source tree)");
+
+    TrainFrictionOptions& f = o.trainFriction;
+    Command& cf = leaf(train, "friction",
+                       "the ball model's rolling deceleration fitted to the simulator's ball: rolls on the empty field, "
+                       "stop positions against the model's",
+                       f.common);
+    seedJsonField(cf);
+    cf.count("--rolls", f.rolls, 2, 200, "rolls, speeds evenly spaced from --min-speed to --max-speed");
+    cf.number("--min-speed", f.minSpeed, 0.2, 6, "m/s", "the slowest roll's start speed");
+    cf.number("--max-speed", f.maxSpeed, 0.2, 6, "m/s", "the fastest roll's start speed");
+    cf.rule([&f] {
+      return f.minSpeed > f.maxSpeed ? std::string("--min-speed: above --max-speed") : std::string();
+    });
   }
   {
     ModulesOptions& m = o.modules;

@@ -117,6 +117,12 @@ struct TrainBallOptions {
   std::string samples, out;
 };
 
+struct TrainFrictionOptions {
+  CommonOptions common;
+  int rolls = 16;
+  double minSpeed = 0.5, maxSpeed = 4;
+};
+
 struct CalibrateOptions {
   CommonOptions common;
   SimOptions sim;
@@ -143,6 +149,7 @@ struct Options {
   WalkOptions walk;
   KickOptions kick;
   TrainBallOptions trainBall;
+  TrainFrictionOptions trainFriction;
   CalibrateOptions calibrate;
   ModulesOptions modules;
 };
