@@ -10,6 +10,7 @@ int renderCommand(const RenderOptions& o);
 int runCommand(const RunOptions& o);
 int runNao(const RunOptions& o);  // apps/RunNao.cpp
 int benchSimCommand(const BenchSimOptions& o);
+int benchProgramCommand(const BenchProgramOptions& o);
 int benchPerceptionCommand(const BenchPerceptionOptions& o);
 int benchCalibrationCommand(const BenchCalibrationOptions& o);
 int perceiveCommand(const PerceiveOptions& o);

@@ -137,7 +137,7 @@ void CommandLine::declare() {
     });
   }
   {
-    CLI::App* bench = group("bench", "speed figures as JSON: sim, perception, calibration");
+    CLI::App* bench = group("bench", "speed figures as JSON: sim, program, perception, calibration");
     BenchSimOptions& s = o.benchSim;
     Command& c = leaf(bench, "sim", "physics and rendering speed: real-time factors, render ms per camera", s.common);
     seedJsonField(c);
@@ -145,6 +145,22 @@ void CommandLine::declare() {
     c.inputFile("--model", s.model, "the robot's MJCF (default models/nao_v6.xml)");
     c.number("--seconds", s.seconds, 1, 600, "s", "simulated seconds per physics run (camera runs: at most 10)");
     c.count("--repeats", s.repeats, 1, 20, "runs per figure; the median is reported");
+
+    BenchProgramOptions& g = o.benchProgram;
+    Command& cg = leaf(bench, "program",
+                       "the robot program in the simulator, both cameras at 30 Hz: ms per cognition run and motion "
+                       "cycle, real-time factor",
+                       g.common);
+    seedJsonField(cg);
+    cg.text("--lighting", g.lighting, "SPEC", kLightingHelp + " (default " + g.lighting + ")");
+    cg.inputFile("--model", g.model, "the robot's MJCF (default models/nao_v6.xml)");
+    cg.number("--seconds", g.seconds, 1, 600, "s", "simulated seconds per run");
+    cg.count("--repeats", g.repeats, 1, 20, "runs; the median of each figure over them is reported");
+    cg.numbers("--goto", g.goTo, poseElements(),
+               "the behaviour walks from the calibration position to this field pose (default 0,0,0: the centre)");
+    cg.onField("--goto", g.goTo);
+    cg.flag("--per-module", g.perModule,
+            "one more run with the timing channel: each module's median ms (the channel's overhead included)");
 
     BenchPerceptionOptions& p = o.benchPerception;
     Command& cp = leaf(bench, "perception", "the vision's median ms per stage on simulated images", p.common);

@@ -53,6 +53,15 @@ struct BenchSimOptions {
   int repeats = 3;
 };
 
+struct BenchProgramOptions {
+  CommonOptions common;
+  std::string lighting = "default", model;
+  double seconds = 20;
+  int repeats = 3;
+  std::vector<double> goTo{0, 0, 0};  // X, Y (m), THETA (deg): the behaviour's walk target
+  bool perModule = false;
+};
+
 struct BenchPerceptionOptions {
   CommonOptions common;
   std::string lighting = "default", camera = "top";
@@ -140,6 +149,7 @@ struct Options {
   RenderOptions render;
   RunOptions run;
   BenchSimOptions benchSim;
+  BenchProgramOptions benchProgram;
   BenchPerceptionOptions benchPerception;
   BenchCalibrationOptions benchCalibration;
   PerceiveOptions perceive;
