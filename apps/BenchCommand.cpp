@@ -1,8 +1,13 @@
 // nao-soccer bench: speed figures as JSON. Medians, since these 2-core machines are noisy.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <numeric>
 #include <random>
+#include <sstream>
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"
@@ -58,6 +63,120 @@ int benchSimCommand(const BenchSimOptions& options) {
                             {"renders", {{"top", top.size()}, {"bottom", bottom.size()}}},
                             {"simulated_seconds_per_run", {{"physics", seconds}, {"cameras", o.seconds}}},
                             {"lighting", lightingJson(lighting)}};
+  writeJson(options.common.json.empty() ? "-" : options.common.json, j);
+  return 0;
+}
+
+namespace {
+
+// The q-quantile (0..1) by nearest rank; 0 for none.
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+double round4(double x) { return std::round(x * 1e4) / 1e4; }
+
+}  // namespace
+
+// The robot program as `run --backend sim` runs it (both cameras at 30 Hz, the behaviour
+// walking to --goto): ms per cognition run and per motion cycle, real-time factor. Each figure
+// is taken per run; the median over the runs is reported.
+int benchProgramCommand(const BenchProgramOptions& options) {
+  const FieldDimensions field = fieldFrom(options.common);
+  checkRobotModel(options.model, field);
+  sim::SimRunOptions o;
+  o.field = field;
+  o.robotModel = options.model;
+  o.seed = options.common.seed;
+  o.lighting = lightingFrom(options.lighting);
+  o.cameras = true;
+  o.seconds = options.seconds;
+  const auto& g = options.goTo;
+  o.goTo = Pose2(g[0], g[1], g[2] * M_PI / 180);
+
+  const char* keys[] = {"cognition_ms_median", "cognition_ms_p95",  "cognition_ms_top_median",
+                        "cognition_ms_top_p95", "cognition_ms_bottom_median", "cognition_ms_bottom_p95",
+                        "motion_ms_median",    "motion_ms_p95",     "motion_ms_p99",
+                        "motion_ms_max",       "render_ms_top",     "render_ms_bottom",
+                        "rtf"};
+  std::map<std::string, std::vector<double>> figures;
+  nlohmann::json runs = nlohmann::json::array();
+  bool fell = false;
+  for (int i = 0; i < options.repeats; ++i) {
+    std::fprintf(stderr, "bench program: run %d/%d (%.0f simulated s)\n", i + 1, options.repeats, o.seconds);
+    const sim::SimRunResult r = sim::runSim(o);
+    const std::map<std::string, double> f = {{"cognition_ms_median", quantile(r.cognitionMs, 0.5)},
+                                             {"cognition_ms_p95", quantile(r.cognitionMs, 0.95)},
+                                             {"cognition_ms_top_median", quantile(r.cognitionMsTop, 0.5)},
+                                             {"cognition_ms_top_p95", quantile(r.cognitionMsTop, 0.95)},
+                                             {"cognition_ms_bottom_median", quantile(r.cognitionMsBottom, 0.5)},
+                                             {"cognition_ms_bottom_p95", quantile(r.cognitionMsBottom, 0.95)},
+                                             {"motion_ms_median", quantile(r.motionMs, 0.5)},
+                                             {"motion_ms_p95", quantile(r.motionMs, 0.95)},
+                                             {"motion_ms_p99", quantile(r.motionMs, 0.99)},
+                                             {"motion_ms_max", quantile(r.motionMs, 1.0)},
+                                             {"render_ms_top", quantile(r.renderMsTop, 0.5)},
+                                             {"render_ms_bottom", quantile(r.renderMsBottom, 0.5)},
+                                             {"rtf", r.wallSeconds > 0 ? r.simSeconds / r.wallSeconds : 0.0}};
+    // Where the wall time went, as shares of the same run (robust to the machine's load).
+    auto sum = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / 1000; };
+    const double wall = std::max(r.wallSeconds, 1e-9);
+    const double render = sum(r.renderMsTop) + sum(r.renderMsBottom), cognition = sum(r.cognitionMs),
+                 motion = sum(r.motionMs);
+    const std::map<std::string, double> shares = {{"render", render / wall},
+                                                  {"cognition", cognition / wall},
+                                                  {"motion", motion / wall},
+                                                  {"physics_and_rest", 1 - (render + cognition + motion) / wall}};
+    nlohmann::json run;
+    for (const auto& [k, v] : shares) {
+      figures["wall_share_" + k].push_back(v);
+      run["wall_share"][k] = round4(v);
+    }
+    for (const auto& [k, v] : f) {
+      figures[k].push_back(v);
+      run[k] = round4(v);
+    }
+    run["motion_cycles"] = r.motionMs.size();
+    run["cognition_runs"] = {{"top", r.cognitionMsTop.size()}, {"bottom", r.cognitionMsBottom.size()}};
+    run["fell"] = r.fell;
+    run["walked_m"] = round4((r.finalPose.head<2>() - o.pose.head<2>()).norm());
+    fell = fell || r.fell;
+    runs.push_back(run);
+  }
+  nlohmann::json j;
+  for (const char* k : keys) j[k] = round4(sim::median(figures[k]));
+  for (const char* k : {"render", "cognition", "motion", "physics_and_rest"})
+    j["wall_share"][k] = round4(sim::median(figures[std::string("wall_share_") + k]));
+  j["repeats"] = options.repeats;
+  j["simulated_seconds_per_run"] = o.seconds;
+  j["goto"] = {g[0], g[1], g[2]};
+  j["fell"] = fell;
+  j["runs"] = runs;
+  j["lighting"] = lightingJson(o.lighting);
+
+  if (options.perModule) {
+    // One more run with the timing channel subscribed: each module's median ms per pipeline.
+    std::fprintf(stderr, "bench program: per-module run (timing channel)\n");
+    std::stringstream sink;
+    DebugChannels debug(sink);
+    debug.subscribe("timing");
+    o.debug = &debug;
+    sim::runSim(o);
+    std::map<std::string, std::map<std::string, std::vector<double>>> ms;
+    for (std::string line; std::getline(sink, line);) {
+      const auto l = nlohmann::json::parse(line, nullptr, false);
+      if (!l.is_object() || l.value("summary", false) || !l.contains("modules")) continue;
+      const std::string pipeline = l.value("pipeline", "");
+      for (const auto& m : l["modules"]) ms[pipeline][m.value("module", "")].push_back(m.value("ms", 0.0));
+    }
+    nlohmann::json modules = nlohmann::json::object();
+    for (const auto& [pipeline, byModule] : ms)
+      for (const auto& [module, v] : byModule) modules[pipeline][module] = round4(sim::median(v));
+    j["module_ms_median"] = modules;
+  }
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }

@@ -17,6 +17,7 @@ int runCommand(const RunOptions& o);
 using ImageFileReader = std::function<CameraImage(const std::string& path, CameraId camera)>;
 int runNao(const RunOptions& o, ImageFileReader readImage = {});
 int benchSimCommand(const BenchSimOptions& o);
+int benchProgramCommand(const BenchProgramOptions& o);
 int benchPerceptionCommand(const BenchPerceptionOptions& o);
 int benchCalibrationCommand(const BenchCalibrationOptions& o);
 int perceiveCommand(const PerceiveOptions& o);
@@ -28,6 +29,7 @@ int evalGetUpCommand(const EvalMotionOptions& o);
 int walkCommand(const WalkOptions& o);
 int kickCommand(const KickOptions& o);
 int trainBallCommand(const TrainBallOptions& o);
+int trainFrictionCommand(const TrainFrictionOptions& o);
 int calibrateCommand(const CalibrateOptions& o);
 int modulesCommand(const ModulesOptions& o);
 

@@ -10,6 +10,8 @@
 #include "apps/SimOptions.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
+#include "controllers/modules/BallLocator.h"
+#include "scenarios/BallRoll.h"
 #include "scenarios/BallTraining.h"
 
 namespace nao::cli {
@@ -47,6 +49,30 @@ int trainBallCommand(const TrainBallOptions& options) {
   j["threshold"] = o.threshold;
   j["model"] = out;
   if (!options.common.json.empty()) writeJson(options.common.json, j);
+  return 0;
+}
+
+// nao-soccer train friction: the ball model's constant deceleration fitted to the simulator's
+// ball (scenarios/BallRoll.h). It prints the figure; config/parameters/BallLocator.json
+// (filter.friction) and the code default hold what it printed (docs/modeling.md).
+int trainFrictionCommand(const TrainFrictionOptions& options) {
+  sim::BallRollOptions o;
+  o.field = fieldFrom(options.common);
+  o.rolls = options.rolls;
+  o.minSpeed = options.minSpeed;
+  o.maxSpeed = options.maxSpeed;
+  o.seed = options.common.seed;
+  o.progress = [](int done, int total) { progress("train friction: rolling", done, total); };
+  const double current = modules::BallLocator::Params{}.filter.friction;
+  constexpr double kPlaceholder = 0.3;  // the friction before this fit (B-Human's venue value)
+  const sim::BallRollFit fit = sim::fitBallRolls(o, kPlaceholder);
+  nlohmann::json j = fit.toJson();
+  j["seed"] = o.seed;
+  j["current_friction_m_s2"] = current;
+  std::fprintf(stderr, "train friction: %d rolls, friction %.4f m/s^2 (stop position error median %.3f m, max %.3f m; "
+               "with %.3f m/s^2: median %.3f m)\n", o.rolls, fit.friction, j["end_error_m"]["median"].get<double>(),
+               j["end_error_m"]["max"].get<double>(), kPlaceholder, j["end_error_old_m"]["median"].get<double>());
+  writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }
 

@@ -21,6 +21,7 @@ void bind(CommandLine& cl) {
   to("render", nao::cli::renderCommand, o.render);
   to("run", nao::cli::runCommand, o.run);
   to("bench sim", nao::cli::benchSimCommand, o.benchSim);
+  to("bench program", nao::cli::benchProgramCommand, o.benchProgram);
   to("bench perception", nao::cli::benchPerceptionCommand, o.benchPerception);
   to("bench calibration", nao::cli::benchCalibrationCommand, o.benchCalibration);
   to("perceive", nao::cli::perceiveCommand, o.perceive);
@@ -32,6 +33,7 @@ void bind(CommandLine& cl) {
   to("walk", nao::cli::walkCommand, o.walk);
   to("kick", nao::cli::kickCommand, o.kick);
   to("train ball", nao::cli::trainBallCommand, o.trainBall);
+  to("train friction", nao::cli::trainFrictionCommand, o.trainFriction);
   to("calibrate", nao::cli::calibrateCommand, o.calibrate);
   to("modules", nao::cli::modulesCommand, o.modules);
 }

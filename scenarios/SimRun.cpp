@@ -151,6 +151,14 @@ SimRunResult runSim(const SimRunOptions& options) {
     ++result.cycles;
     result.motionMs.push_back(program.lastTiming().motionMs);
     for (double ms : program.lastTiming().cognitionMs) result.cognitionMs.push_back(ms);
+    {  // RobotProgram::cycle runs cognition once per image present, top first
+      const auto& latest = program.blackboard().read<CameraImages>().latest;
+      const auto& ms = program.lastTiming().cognitionMs;
+      std::size_t k = 0;
+      for (CameraId cam : {CameraId::Top, CameraId::Bottom})
+        if (latest[static_cast<int>(cam)] && k < ms.size())
+          (cam == CameraId::Top ? result.cognitionMsTop : result.cognitionMsBottom).push_back(ms[k++]);
+    }
     if (modeling && program.cognitionBoard().has<RobotPose>() && world.time() + 1e-9 >= nextSecond) {
       SimRunSecond second;
       second.t = world.time();

@@ -66,6 +66,7 @@ struct SimRunResult {
   RobotPose finalEstimate;  // as in SimRunSecond
   BallModel finalBall;
   std::vector<double> motionMs, cognitionMs;  // wall time per motion cycle and per cognition run
+  std::vector<double> cognitionMsTop, cognitionMsBottom;  // cognitionMs by the image's camera
 };
 
 SimRunResult runSim(const SimRunOptions& options);

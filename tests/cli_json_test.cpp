@@ -42,6 +42,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "render") return "render --out " + dir + "/r.png";
   if (path == "run") return "run --seconds 0.5";
   if (path == "bench sim") return "bench sim --seconds 1 --repeats 1";
+  if (path == "bench program") return "bench program --seconds 1 --repeats 1";
   if (path == "bench perception") return "bench perception --frames 2 --repeats 1";
   if (path == "bench calibration") return "bench calibration --repeats 1";
   if (path == "perceive") return "perceive " + image;
@@ -53,6 +54,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "walk") return "walk --vx 200 --seconds 1";
   if (path == "kick") return "kick --trials 1";
   if (path == "train ball") return "train ball --scenes 5 --lightings 1 --iterations 2 --out " + dir + "/ball.yml";
+  if (path == "train friction") return "train friction --rolls 2 --max-speed 1";
   if (path == "calibrate") return "calibrate";
   if (path == "modules") return "modules";
   return "";
@@ -75,7 +77,7 @@ TEST(CliJson, EveryCommandPrintsOnlyJsonOnStdout) {
     EXPECT_FALSE(fs::exists(fs::current_path() / "MUJOCO_LOG.TXT"));
     ++checked;
   }
-  EXPECT_EQ(checked, 16);
+  EXPECT_EQ(checked, 18);
 }
 
 }  // namespace

@@ -152,7 +152,7 @@ void CommandLine::declare() {
     });
   }
   {
-    CLI::App* bench = group("bench", "speed figures as JSON: sim, perception, calibration");
+    CLI::App* bench = group("bench", "speed figures as JSON: sim, program, perception, calibration");
     BenchSimOptions& s = o.benchSim;
     Command& c = leaf(bench, "sim", "physics and rendering speed: real-time factors, render ms per camera", s.common);
     seedJsonField(c);
@@ -160,6 +160,22 @@ void CommandLine::declare() {
     c.inputFile("--model", s.model, "the robot's MJCF (default models/nao_v6.xml)");
     c.number("--seconds", s.seconds, 1, 600, "s", "simulated seconds per physics run (camera runs: at most 10)");
     c.count("--repeats", s.repeats, 1, 20, "runs per figure; the median is reported");
+
+    BenchProgramOptions& g = o.benchProgram;
+    Command& cg = leaf(bench, "program",
+                       "the robot program in the simulator, both cameras at 30 Hz: ms per cognition run and motion "
+                       "cycle, real-time factor",
+                       g.common);
+    seedJsonField(cg);
+    cg.text("--lighting", g.lighting, "SPEC", kLightingHelp + " (default " + g.lighting + ")");
+    cg.inputFile("--model", g.model, "the robot's MJCF (default models/nao_v6.xml)");
+    cg.number("--seconds", g.seconds, 1, 600, "s", "simulated seconds per run");
+    cg.count("--repeats", g.repeats, 1, 20, "runs; the median of each figure over them is reported");
+    cg.numbers("--goto", g.goTo, poseElements(),
+               "the behaviour walks from the calibration position to this field pose (default 0,0,0: the centre)");
+    cg.onField("--goto", g.goTo);
+    cg.flag("--per-module", g.perModule,
+            "one more run with the timing channel: each module's median ms (the channel's overhead included)");
 
     BenchPerceptionOptions& p = o.benchPerception;
     Command& cp = leaf(bench, "perception", "the vision's median ms per stage on simulated images", p.common);
@@ -266,7 +282,7 @@ void CommandLine::declare() {
     c.flag("--randomize", k.randomize, "a 'foreign' robot per trial: masses +-5%, joint offsets +-1 deg, friction 0.6-1");
   }
   {
-    CLI::App* train = group("train", "train a model from simulated images: ball");
+    CLI::App* train = group("train", "fit a model to the simulator: ball (classifier), friction (ball roll)");
     TrainBallOptions& t = o.trainBall;
     Command& c = leaf(train, "ball", "the ball classifier (HOG + multi-layer perceptron) from simulated images", t.common);
     seedJsonField(c);
@@ -283,6 +299,19 @@ void CommandLine::declare() {
              return in.empty() ? in : "'" + s + "': " + in;
            });
     c.outputFile("--out", t.out, "the model to write (default models/vision/ball_classifier.yml in the source tree)");
+
+    TrainFrictionOptions& f = o.trainFriction;
+    Command& cf = leaf(train, "friction",
+                       "the ball model's rolling deceleration fitted to the simulator's ball: rolls on the empty field, "
+                       "stop positions against the model's",
+                       f.common);
+    seedJsonField(cf);
+    cf.count("--rolls", f.rolls, 2, 200, "rolls, speeds evenly spaced from --min-speed to --max-speed");
+    cf.number("--min-speed", f.minSpeed, 0.2, 6, "m/s", "the slowest roll's start speed");
+    cf.number("--max-speed", f.maxSpeed, 0.2, 6, "m/s", "the fastest roll's start speed");
+    cf.rule([&f] {
+      return f.minSpeed > f.maxSpeed ? std::string("--min-speed: above --max-speed") : std::string();
+    });
   }
   {
     ModulesOptions& m = o.modules;

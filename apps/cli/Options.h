@@ -53,6 +53,15 @@ struct BenchSimOptions {
   int repeats = 3;
 };
 
+struct BenchProgramOptions {
+  CommonOptions common;
+  std::string lighting = "default", model;
+  double seconds = 20;
+  int repeats = 3;
+  std::vector<double> goTo{0, 0, 0};  // X, Y (m), THETA (deg): the behaviour's walk target
+  bool perModule = false;
+};
+
 struct BenchPerceptionOptions {
   CommonOptions common;
   std::string lighting = "default", camera = "top";
@@ -117,6 +126,12 @@ struct TrainBallOptions {
   std::string samples, out;
 };
 
+struct TrainFrictionOptions {
+  CommonOptions common;
+  int rolls = 16;
+  double minSpeed = 0.5, maxSpeed = 4;
+};
+
 struct CalibrateOptions {
   CommonOptions common;
   SimOptions sim;
@@ -134,6 +149,7 @@ struct Options {
   RenderOptions render;
   RunOptions run;
   BenchSimOptions benchSim;
+  BenchProgramOptions benchProgram;
   BenchPerceptionOptions benchPerception;
   BenchCalibrationOptions benchCalibration;
   PerceiveOptions perceive;
@@ -143,6 +159,7 @@ struct Options {
   WalkOptions walk;
   KickOptions kick;
   TrainBallOptions trainBall;
+  TrainFrictionOptions trainFriction;
   CalibrateOptions calibrate;
   ModulesOptions modules;
 };

@@ -19,7 +19,8 @@ namespace nao {
 class BallFilter {
  public:
   struct Params {
-    double friction = 0.3;                 // m/s^2, the constant deceleration of a rolling ball
+    double friction = 0.77;                // m/s^2, the constant deceleration of a rolling ball (the
+                                           // simulator's, fitted by `nao-soccer train friction`)
     double stationaryProcessSigma = 0.01;  // m/sqrt(s): a lying ball's random walk
     double rollingAccelSigma = 0.15;       // m/s^2: white acceleration noise of a rolling ball
     double odometryTransFraction = 0.1;    // m of ball error per m the robot walked
