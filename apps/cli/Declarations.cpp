@@ -65,11 +65,11 @@ std::string pathProblem(const std::string& s) { return s.empty() ? "an empty pat
 // --debug and --debug-out (robot/Debug.h): the names are checked against the declared channels
 // before the run.
 void debugOptions(Command& c, DebugOptions& d) {
-  std::string names;
-  for (const DebugChannelInfo& channel : debugChannelList()) names += (names.empty() ? "" : ", ") + channel.name;
+  // The help does not list the channels: each program (nao-soccer, nao-soccer-robot) declares its
+  // own, and their `run --help` must read the same.
   auto* channels = c.text("--debug", d.channels, "CHANNEL[,CHANNEL]",
-                          "write these debug channels as JSON lines: " + names +
-                              " (`nao-soccer modules` says what each holds)",
+                          "write these debug channels as JSON lines (`nao-soccer modules` lists them and what "
+                          "each holds; an unknown name is refused with the list)",
                           debugChannelsProblem);
   c.outputFile("--debug-out", d.out, "where --debug writes (default stderr)")->needs(channels);
 }
