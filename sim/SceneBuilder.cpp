@@ -42,12 +42,14 @@ constexpr double kBarRadius = 0.0125;    // m: the net's support bars
 constexpr double kPatchRadius = 0.016;   // m: the ball's black patches (12, like a soccer ball)
 constexpr double kPatchDepth = 0.004;    // m: half-thickness of a patch ellipsoid
 constexpr double kPatchRise = 0.0007;    // m: how far a patch stands out of the sphere
-// Rolling resistance of the foam ball on turf: a ball rolling at 3 m/s stops after ~5 m
-// (deceleration ~1 m/s^2); a dropped ball comes to rest without bouncing (the turf's pile
-// absorbs the impact). Ball-carpet is an explicit contact pair (it overrides the generated
-// one): condim 6, friction (slide, slide, spin, roll, roll), critically damped.
+// The foam ball on turf: a dropped ball comes to rest without bouncing (the turf's pile absorbs
+// the impact). Ball-carpet is an explicit contact pair (it overrides the generated one):
+// condim 3 (sliding friction: the ball rolls without slipping), critically damped. Its rolling
+// resistance is World's (a constant deceleration, the same in every direction: MuJoCo's
+// rolling friction under the pyramidal cone was 1.4 times stronger along the field's axes than
+// along its diagonals).
 constexpr const char* kBallFriction = "0.8 0.005 0.0075";
-constexpr const char* kBallCarpetFriction = "1 1 0.005 0.0075 0.0075";
+constexpr const char* kBallCarpetFriction = "1 1";
 constexpr const char* kBallCarpetSolref = "0.02 1";
 // Against hard things (the robot's plastic feet and legs, goal posts) the foam ball rebounds
 // with a coefficient of restitution of about 0.5: an underdamped contact (time constant,
@@ -490,7 +492,7 @@ void addBall(Scene& s, int index, const Eigen::Vector3d& position) {
       {{"name", name + "/carpet"},
        {"geom1", name},
        {"geom2", "field/carpet"},
-       {"condim", "6"},
+       {"condim", "3"},
        {"friction", kBallCarpetFriction},
        {"solref", kBallCarpetSolref},
        {"solimp", "0.9 0.95 0.001"},

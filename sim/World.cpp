@@ -200,6 +200,35 @@ struct World::Impl {
     robots.push_back(r);
   }
 
+  // The turf's rolling resistance: a ball on the carpet decelerates by kRollingDeceleration
+  // against its direction of travel, whatever the direction (a horizontal force at its centre:
+  // a solid sphere rolling without slipping decelerates by F / (1.4 m)), and its spin about the
+  // vertical dies out. Near standstill the force shrinks with the speed, so the ball stops
+  // instead of reversing within a step.
+  void applyRollingResistance() {
+    constexpr double kRollingDeceleration = 0.8;  // m/s^2
+    constexpr double kSpinDamping = 5.0;          // 1/s: the vertical spin's decay rate
+    constexpr double kContactSlack = 0.005;       // m above resting height still on the carpet
+    const double dt = m->opt.timestep;
+    for (const Ball& b : balls) {
+      double* f = d->xfrc_applied + 6 * b.body;
+      for (int k = 0; k < 6; ++k) f[k] = 0;
+      if (d->qpos[b.qpos + 2] > b.radius + kContactSlack) continue;  // in the air
+      const double vx = d->qvel[b.dof], vy = d->qvel[b.dof + 1], speed = std::hypot(vx, vy);
+      const double mass = m->body_mass[b.body];
+      if (speed > 1e-9) {
+        const double a = kRollingDeceleration * std::min(1.0, speed / (kRollingDeceleration * dt));
+        f[0] = -1.4 * mass * a * vx / speed;
+        f[1] = -1.4 * mass * a * vy / speed;
+      }
+      // A free joint's angular velocity is in the body's frame; the torque is the world's.
+      const double* R = d->xmat + 9 * b.body;
+      const double* w = d->qvel + b.dof + 3;
+      const double spin = R[6] * w[0] + R[7] * w[1] + R[8] * w[2];
+      f[5] = -kSpinDamping * 0.4 * mass * b.radius * b.radius * spin;
+    }
+  }
+
   void findBall(int index) {
     Ball b;
     const std::string name = "ball" + std::to_string(index);
@@ -381,6 +410,7 @@ void World::step() {
   // Checked before the step too: MuJoCo would otherwise quietly reset a corrupted state.
   I.checkFinite();
   I.applyServos();
+  I.applyRollingResistance();
   mj_step(I.m, I.d);
   I.checkWarnings();
   for (Impl::Robot& r : I.robots) {

@@ -272,7 +272,7 @@ TEST(SceneTest, BadRobotModelsNameTheFile) {
               "MuJoCo");
 }
 
-TEST(SceneTest, BallRollsAFewMetresAndComesToRest) {
+TEST(SceneTest, BallRollsWithoutSlippingAndADroppedOneRests) {
   SceneSpec spec;
   spec.robots.clear();
   spec.balls = {Eigen::Vector3d(-3, 0, kBallRadius), Eigen::Vector3d(0, 2, 0.3)};
@@ -282,11 +282,11 @@ TEST(SceneTest, BallRollsAFewMetresAndComesToRest) {
   mj_forward(m, d);
   d->qvel[0] = 3.0;                // rolling at 3 m/s ...
   d->qvel[4] = 3.0 / kBallRadius;  // ... without slipping
-  for (int i = 0; i < static_cast<int>(8.0 / m->opt.timestep); ++i) mj_step(m, d);
-  const double travelled = d->qpos[0] + 3;
-  EXPECT_GT(travelled, 2.5);
-  EXPECT_LT(travelled, 7.0);
-  EXPECT_LT(std::hypot(d->qvel[0], d->qvel[1]), 0.01);
+  for (int i = 0; i < static_cast<int>(1.0 / m->opt.timestep); ++i) mj_step(m, d);
+  // The scene's carpet has sliding friction only: the ball keeps rolling without slipping
+  // (its rolling resistance is World's, world_test RolledBallStops).
+  EXPECT_NEAR(d->qpos[0] + 3, 3.0, 0.05);
+  EXPECT_NEAR(d->qvel[0], 3.0, 0.02);
   // The dropped ball rests on the carpet.
   EXPECT_NEAR(d->qpos[7 + 2], kBallRadius, 0.002);
   EXPECT_LT(std::abs(d->qvel[6 + 2]), 1e-3);
