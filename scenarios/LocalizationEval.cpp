@@ -38,7 +38,10 @@ constexpr double kRecoveryLimit = 10;        // s
 constexpr double kBallStill = 0.01;          // m/s: the true ball lies still below this speed
 constexpr double kFalseBallDistance = 0.5;   // m from every true ball
 constexpr double kRollingEndAfter = 1.0;     // s after the kick: the model's end position scored then
-constexpr double kRollDeceleration = 0.9;    // m/s^2, the simulated ball on the carpet (sim/SceneBuilder.cpp)
+// m/s^2: the simulated ball on the carpet decelerates by 0.92 along the field's axes and by
+// 0.66 diagonally (MuJoCo's pyramidal friction cone); this is the mean of 1/a over directions.
+constexpr double kRollDeceleration = 0.77;
+constexpr double kRollMin = 1, kRollMax = 4;  // m: the rolls scored (the acceptance's kicks of 1-4 m)
 constexpr double kRollLimit = 8;             // s after the kick at most
 
 const char* kindName(LocalizationTrialKind k) {
@@ -313,7 +316,9 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
                      {"error_after_m", rounded(errorAfterKidnap, 1e4)},  // the first image after it
                      {"distance_m", rounded((Eigen::Vector2d(to.x(), to.y()) - before.translation()).norm(), 1e4)},
                      {"turn_deg", rounded(std::abs(Pose2::wrap(to.z() - before.theta)) / kDeg, 1e3)},
-                     {"error_end_m", rounded((estimateNow(program.cognitionBoard()).pose.translation() - after.translation()).norm(), 1e4)}};
+                     {"error_end_m", rounded((estimateNow(program.cognitionBoard()).pose.translation() - after.translation()).norm(), 1e4)},
+                     {"mirrored_end", (estimateNow(program.cognitionBoard()).pose.translation() + after.translation()).norm() <
+                                          (estimateNow(program.cognitionBoard()).pose.translation() - after.translation()).norm()}};
   } else if (kind == LocalizationTrialKind::Rolling) {
     // The robot stands; the referee rolls a ball in where its top camera looks, 1.2-2 m away
     // (its behaviour searches features, not balls, while it knows none), and kicks it 1-4 m
@@ -415,7 +420,8 @@ nlohmann::json figures(const std::vector<const nlohmann::json*>& rows) {
     if (r->contains("rolling")) {
       ++rolls;
       const auto& e = r->at("rolling").at("end_error_m");
-      if (!e.is_null()) rollingEnd.push_back(e.get<double>());
+      const double roll = r->at("rolling").at("roll_m").get<double>();
+      if (!e.is_null() && roll >= kRollMin && roll <= kRollMax) rollingEnd.push_back(e.get<double>());
     }
   }
   nlohmann::json staticJson;

@@ -207,7 +207,8 @@ void CommandLine::declare() {
     cl.text("--lighting", l.lighting, "SPEC",
             "sweep (trial seed s takes preset s mod 7 of the sweep) or " + kLightingHelp + " (default sweep)");
     cl.flag("--randomize", l.randomize,
-            randomize + ", camera offsets +-3 deg the robot was calibrated for (residual +-0.15 deg)");
+            randomize + " (the head's calibrated away), camera offsets +-3 deg the robot was calibrated for "
+                        "(residual +-0.15 deg)");
     cl.number("--seconds", l.seconds, 5, 600, "s", "the scripted walk of each trial (a kidnap or a kick follows)");
     cl.count("--kidnap-every", l.kidnapEvery, 0, 1000, "trial seeds s with s mod N = N-1 end with a kidnap (0: none)");
     cl.count("--roll-every", l.rollEvery, 0, 1000, "trial seeds s with s mod N = 1 end with a rolling ball (0: none)");
