@@ -187,6 +187,7 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
   };
 
   enum class Phase { Walk, Stand, Kidnapped, Rolling } phase = Phase::Walk;
+  bool ballMoved = false;  // from the referee's placing the ball until the robot has it (or the kick)
   std::vector<double> positionErrors, headingErrors;
   std::map<std::string, std::vector<double>> ballStatic{{"0-2", {}}, {"2-4", {}}, {"4-6", {}}};
   long runs = 0, scored = 0, mirrored = 0, ballClaims = 0, falseBalls = 0;
@@ -226,7 +227,7 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
       const Eigen::Vector2d mirror = -truth.translation();
       if ((pose.pose.translation() - mirror).norm() < positionError) ++mirrored;
     }
-    if (!cognition.has<BallModel>()) return;
+    if (!cognition.has<BallModel>() || ballMoved) return;  // the referee just moved it: no model could know
     const BallModel b = ballNow(cognition);
     const Eigen::Vector2d trueBall = truth.inverse() * Eigen::Vector2d(world.ballPosition(0).head<2>());
     const bool still = world.ballVelocity(0).head<2>().norm() < kBallStill;
@@ -341,6 +342,7 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
       if (inside(place, 0.3) && inside(place + roll * dir, 0.3)) break;
     }
     world.placeBall(0, Eigen::Vector3d(place.x(), place.y(), kBallRadius));
+    ballMoved = true;
     // The kicker waits (up to 6 s) until the robot has the ball: its model, seen in the last
     // 0.1 s, within 0.3 m of where the ball lies.
     double ready = -1;
@@ -352,6 +354,7 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
       return has && world.time() - ready >= 0.5;
     });
     phase = Phase::Rolling;
+    ballMoved = false;
     kickTime = world.time();
     world.placeBall(0, Eigen::Vector3d(place.x(), place.y(), kBallRadius), Eigen::Vector3d(velocity.x(), velocity.y(), 0));
     runFor(kRollLimit, [&] {
