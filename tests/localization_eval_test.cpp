@@ -31,8 +31,9 @@ TEST(LocalizationEval, WalkThenKidnapIsScoredAgainstTheTruth) {
   const nlohmann::json j = sim::aggregateLocalizationRows({row});
   std::printf("%s\n", j.dump().c_str());
   EXPECT_GT(row.at("valid").get<long>(), 200);  // both cameras at 30 Hz over ~7 s, most of it valid
-  EXPECT_LT(j["position_error_m"]["median"].get<double>(), 0.10);
-  EXPECT_LT(j["heading_error_deg"]["median"].get<double>(), 3.0);
+  EXPECT_LT(j["position_error_m"]["median"].get<double>(), 0.05);  // 5 mm measured
+  EXPECT_LT(j["position_error_m"]["p95"].get<double>(), 0.15);
+  EXPECT_LT(j["heading_error_deg"]["median"].get<double>(), 1.5);
   EXPECT_EQ(j["mirrored_fraction"].get<double>(), 0.0);
   const auto& k = row.at("kidnap");
   EXPECT_GE(k.at("distance_m").get<double>(), 1.0);
