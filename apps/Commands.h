@@ -23,6 +23,7 @@ int benchCalibrationCommand(const BenchCalibrationOptions& o);
 int perceiveCommand(const PerceiveOptions& o);
 int evalPerceptionCommand(const EvalPerceptionOptions& o);
 int evalCalibrationCommand(const EvalCalibrationOptions& o);
+int evalLocalizationCommand(const EvalLocalizationOptions& o);  // apps/LocalizationCommand.cpp
 int evalWalkCommand(const EvalMotionOptions& o);
 int evalWalkToCommand(const EvalMotionOptions& o);
 int evalGetUpCommand(const EvalMotionOptions& o);

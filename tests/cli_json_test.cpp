@@ -48,6 +48,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "perceive") return "perceive " + image;
   if (path == "eval perception") return "eval perception --trials 1 --lighting default";
   if (path == "eval calibration") return "eval calibration --trials 1 --lighting default";
+  if (path == "eval localization") return "eval localization --trials 1 --seconds 5 --lighting default --roll-every 0";
   if (path == "eval walk") return "eval walk --trials 1 --seconds 2";
   if (path == "eval walk-to") return "eval walk-to --trials 1";
   if (path == "eval getup") return "eval getup --trials 1 --seconds 1";
@@ -77,7 +78,7 @@ TEST(CliJson, EveryCommandPrintsOnlyJsonOnStdout) {
     EXPECT_FALSE(fs::exists(fs::current_path() / "MUJOCO_LOG.TXT"));
     ++checked;
   }
-  EXPECT_EQ(checked, 18);
+  EXPECT_EQ(checked, 19);
 }
 
 }  // namespace

@@ -227,6 +227,24 @@ void CommandLine::declare() {
     ck.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "the solver scored (the other is compared)");
 
     const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
+
+    EvalLocalizationOptions& l = o.evalLocalization;
+    Command& cl = leaf(eval, "localization",
+                       "the robot program's self-localization and ball model against the truth: scripted walks, "
+                       "kidnaps, rolling balls",
+                       l.common);
+    seedJsonField(cl);
+    cl.count("--trials", l.trials, 1, 10000, "trials; trial i has seed --seed + i");
+    cl.text("--lighting", l.lighting, "SPEC",
+            "sweep (trial seed s takes preset s mod 7 of the sweep) or " + kLightingHelp + " (default sweep)");
+    cl.flag("--randomize", l.randomize,
+            randomize + " (the head's calibrated away), camera offsets +-3 deg the robot was calibrated for "
+                        "(residual +-0.15 deg)");
+    cl.number("--seconds", l.seconds, 5, 600, "s", "the scripted walk of each trial (a kidnap or a kick follows)");
+    cl.count("--kidnap-every", l.kidnapEvery, 0, 1000, "trial seeds s with s mod N = N-1 end with a kidnap (0: none)");
+    cl.count("--roll-every", l.rollEvery, 0, 1000, "trial seeds s with s mod N = 1 end with a rolling ball (0: none)");
+    cl.outputFile("--rows", l.rows,
+                  "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
     EvalMotionOptions& w = o.evalWalk;
     w.seconds = 60;
     Command& cw = leaf(eval, "walk", "random walk commands every 2-5 s: falls, odometry error", w.common);

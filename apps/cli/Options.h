@@ -98,6 +98,14 @@ struct EvalCalibrationOptions {
   double maxOffset = 3;
 };
 
+struct EvalLocalizationOptions {
+  CommonOptions common;
+  std::string lighting = "sweep", rows;
+  int trials = 8, kidnapEvery = 4, rollEvery = 4;
+  double seconds = 20;
+  bool randomize = false;
+};
+
 struct EvalMotionOptions {  // eval walk, walk-to, getup
   CommonOptions common;
   int trials = 20;
@@ -155,6 +163,7 @@ struct Options {
   PerceiveOptions perceive;
   EvalPerceptionOptions evalPerception;
   EvalCalibrationOptions evalCalibration;
+  EvalLocalizationOptions evalLocalization;
   EvalMotionOptions evalWalk, evalWalkTo, evalGetUp;
   WalkOptions walk;
   KickOptions kick;
