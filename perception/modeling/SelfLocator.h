@@ -73,7 +73,7 @@ class SelfLocator {
     double candidateMinSupport = 0.8;  // share of an image's percepts that must fit a candidate
     int candidateMinPercepts = 3;      // and at least this many
     double maxGyroForFeatures = 0.87;  // rad/s: no candidates while the body turns faster (50 deg/s)
-    double mirrorAngleWeight = 1.0;    // m per rad, when comparing a candidate's two mirror images
+    double mirrorAngleWeight = 0.2;    // m per rad, when comparing a candidate's two mirror images
 
     // Validity.
     double validQuality = 0.5;         // score at least ...
