@@ -34,6 +34,7 @@
 #include "robot/nao/GameController.h"
 #include "robot/nao/ImageFiles.h"
 #include "robot/nao/NaoBackend.h"
+#include "robot/nao/SocketCamera.h"
 
 namespace nao::cli {
 namespace {
@@ -134,6 +135,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
   NaoBackendConfig config;
   config.lolaSocket = nao.lolaSocket;
   config.cameras = options.cameras != "none";
+  config.lolaClock = nao.clock == "lola";
   config.camera[0].device = nao.cameraTop;
   config.camera[1].device = nao.cameraBottom;
   if (!nao.cameraSettings.empty()) applyCameraSettings(nao.cameraSettings, config.camera);
@@ -151,6 +153,13 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
           std::make_shared<FileCamera>(cam, std::move(files), readImage, start, kCameraPeriod, logLine);
     }
     logLine("run: cameras from the files in " + dir + " (" + counts + "), 30 Hz each, looping");
+  }
+  // --cameras socket:PATH: frames a simulator renders and sends (tests/sim_lola_peer).
+  if (options.cameras.rfind("socket:", 0) == 0) {
+    const std::string path = options.cameras.substr(7);
+    for (CameraId cam : {CameraId::Top, CameraId::Bottom})
+      config.sources[static_cast<int>(cam)] = std::make_shared<SocketCamera>(cam, path, logLine);
+    logLine("run: cameras from the frames sent over " + path);
   }
 
   GameController::Config gcConfig;
@@ -187,7 +196,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
   // ramp starts when the program takes over), so that no answer waits for the build.
   std::unique_ptr<RobotProgram> program;
   std::future<std::unique_ptr<RobotProgram>> building;
-  double programStart = 0;
+  double programStart = 0, lastFrameTime = 0;  // the program's clock
   SensorFrame first;
   while (!program && backend.waitForSensors(first)) {
     if (!building.valid()) {
@@ -222,6 +231,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
 
   // CPU time of the motion cadence (this thread's, so waiting for LoLA's next packet does not
   // count): the budget a team sees on the Atom. Cognition measures its own thread.
+  nlohmann::json beliefs = nlohmann::json::array();
   double cpuSumMs = 0, cpuMaxMs = 0;
   std::uint64_t cpuCycles = 0;
   if (program) {
@@ -234,6 +244,23 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
       const double lying = f.fallen ? bb.read<SensorFrame>().time - f.fallTime : 0;
       if (!f.falling && !(f.fallen && lying < 1.0)) return {};
       return std::string(f.fallen ? "fallen" : "falling") + " (" + fallDirectionName(f.direction) + ")";
+    });
+    // The belief once a second of image time, for the JSON: pose and ball as cognition left them
+    // after that image (the cognition thread writes, this one reads after it has stopped).
+    program->setCognitionObserver([&beliefs, next = 0.0](const CameraImage& image, const Blackboard& cognition) mutable {
+      if (image.timestamp < next || !cognition.has<RobotPose>()) return;
+      next = std::floor(image.timestamp) + 1;
+      const RobotPose& pose = cognition.read<RobotPose>();
+      nlohmann::json b = {{"image_time", image.timestamp},
+                          {"camera", cameraName(image.camera)},
+                          {"estimated_pose", {pose.pose.x, pose.pose.y, pose.pose.theta * 180 / M_PI}},
+                          {"valid", pose.valid},
+                          {"sigma_m", pose.sigmaTranslation()}};
+      if (cognition.has<BallModel>()) {
+        const BallModel& ball = cognition.read<BallModel>();
+        b["ball"] = {{"valid", ball.valid}, {"lost", ball.lost}, {"position", {ball.position.x(), ball.position.y()}}};
+      }
+      beliefs.push_back(std::move(b));
     });
     // Cognition in a thread of its own; started before this thread becomes real-time, so that
     // it keeps the normal policy (threads inherit it).
@@ -256,7 +283,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
       bb.write<SafetyState>().userUnstiffened = backend.safety().currentFault() == SafetyFault::User;
       if (!program->cycle(backend)) break;
       const SensorFrame& frame = bb.read<SensorFrame>();
-      time = frame.time;
+      time = lastFrameTime = frame.time;
       if (bb.has<ButtonState>()) {
         for (ButtonEvent e : bb.read<ButtonState>().events) {
           logLine(std::string("buttons: ") + buttonEventName(e));
@@ -309,7 +336,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
     cognition = program->cognitionTime();
   }
   for (long n : processed) images += n;
-  const double runSeconds = std::max(1e-9, backend.now() - programStart);
+  const double runSeconds = std::max(1e-9, lastFrameTime - programStart);
   const double cognitionMeanMs = images ? cognition.wallMsSum / static_cast<double>(images) : 0;
   const double cognitionCpuMs = images ? cognition.cpuMsSum / static_cast<double>(images) : 0;
   std::fprintf(stderr,
@@ -345,10 +372,14 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
          {{"motion", program ? program->pipeline().order() : std::vector<std::string>{}},
           {"cognition", program ? program->cognitionPipeline().order() : std::vector<std::string>{}}}},
         {"stop_reason", backend.stopReason()},
+        {"clock", nao.clock},
+        {"per_second", beliefs},
         {"clean_stop", backend.stoppedCleanly()},
         {"robot", {{"body_id", backend.robotInfo().bodyId}, {"head_id", backend.robotInfo().headId}}},
         {"game", {{"state", gc::stateName(g.state)}, {"penalised", g.penalised()},
                   {"from_gamecontroller", g.fromGameController}, {"rejected_packets", gameController.rejected()}}}};
+    // CLOCK_MONOTONIC of the program's time 0: lines its times up with another clock.
+    if (nao.clock == "monotonic") j["clock_origin_s"] = backend.clockOrigin();
     // What the robot believed at the end (the cognition thread has stopped): no truth here.
     if (program && program->cognitionBoard().has<RobotPose>()) {
       const RobotPose& pose = program->cognitionBoard().read<RobotPose>();

@@ -65,12 +65,19 @@ void DebugChannels::subscribe(const std::string& list, const std::string& where)
   for (const std::string& name : split(list)) mask_ |= registry().at(name)->bit();
 }
 
+namespace {
+thread_local double t_debugTime = 0;  // DebugChannels::setTime's, per thread
+}  // namespace
+
+void DebugChannels::setTime(double t) { t_debugTime = t; }
+double DebugChannels::time() const { return t_debugTime; }
+
 void DebugChannels::write(const DebugChannel& channel, const nlohmann::json& payload) {
   // Built by hand so that "channel" and "t" lead the line (nlohmann::json sorts its keys).
   std::string line = "{\"channel\":\"";
   line += channel.name();
   line += "\",\"t\":";
-  line += nlohmann::json(time_).dump();
+  line += nlohmann::json(t_debugTime).dump();
   if (payload.is_object()) {
     for (const auto& [key, value] : payload.items())
       if (key != "channel" && key != "t") {

@@ -60,9 +60,10 @@ class DebugChannels {
   bool on(const DebugChannel& channel) const { return (mask_ & channel.bit()) != 0; }
   bool any() const { return mask_ != 0; }
 
-  // The time lines carry: the backend's clock (s) of the cycle or image now being processed.
-  void setTime(double t) { time_ = t; }
-  double time() const { return time_; }
+  // The time lines carry: the backend's clock (s) of the cycle or image the calling thread is
+  // processing. Kept per thread: on a NAO motion and cognition write from threads of their own.
+  void setTime(double t);
+  double time() const;
 
   // Writes one line if `channel` is subscribed; `payload()` (returning nlohmann::json, an
   // object whose keys join "channel" and "t", or any other value as "value") runs only then.
@@ -81,7 +82,6 @@ class DebugChannels {
  private:
   std::ostream* sink_ = nullptr;
   std::uint64_t mask_ = 0;
-  double time_ = 0;
   long lines_ = 0;
   std::mutex mutex_;
 };

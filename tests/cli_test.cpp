@@ -57,6 +57,16 @@ TEST(Cli, OptionOfAnotherCommand) {
   expectOneLineError(run("run --backend sim --team 5"), "--team", "--backend nao");
 }
 
+// The LoLA clock only with cameras whose frames carry it; a socket path must fit a socket.
+TEST(Cli, NaoClockAndCameraSockets) {
+  expectOneLineError(run("run --backend nao --clock lola --cameras v4l2"), "--clock lola", "socket:PATH");
+  expectOneLineError(run("run --backend sim --clock lola"), "--clock");
+  expectOneLineError(run("run --backend nao --clock sundial"), "--clock", "monotonic|lola");
+  expectOneLineError(run("run --backend nao --cameras socket:"), "--cameras", "socket: needs a path");
+  expectOneLineError(run("run --backend nao --cameras socket:/" + std::string(120, 'x')), "--cameras", "at most 100");
+  expectOneLineError(run("run --backend sim --cameras socket:/tmp/s"), "--cameras", "--backend sim");
+}
+
 TEST(Cli, NumbersAreBounded) {
   expectOneLineError(run("render --seed -1" + kOut), "--seed", "0..4294967295");
   expectOneLineError(run("render --seed 4294967296" + kOut), "--seed");

@@ -5,6 +5,7 @@
 # the real nao-soccer as its client (ctest lola_peer_test).
 add_executable(lola_peer lola_peer.cpp)
 target_link_libraries(lola_peer PRIVATE ${NAO_MSGPACK_TARGET})
+target_include_directories(lola_peer PRIVATE ${CMAKE_SOURCE_DIR})
 target_compile_definitions(lola_peer PRIVATE MSGPACK_NO_BOOST)
 nao_warnings(lola_peer)
 
@@ -14,6 +15,14 @@ nao_warnings(lola_peer)
 add_test(NAME lola_peer_test COMMAND lola_peer --nao-soccer $<TARGET_FILE:nao-soccer> --cycles 1000)
 set_tests_properties(lola_peer_test PROPERTIES RUN_SERIAL TRUE TIMEOUT 300 LABELS "nao")
 
+# The simulator as a whole NAO under run --backend nao: LoLA over a Unix socket, both cameras
+# rendered and sent to --cameras socket:PATH, the program's belief scored against the truth.
+add_executable(sim_lola_peer sim_lola_peer.cpp)
+target_include_directories(sim_lola_peer PRIVATE ${CMAKE_SOURCE_DIR})
+target_link_libraries(sim_lola_peer PRIVATE nao_sim nao_controllers ${NAO_MSGPACK_TARGET} nlohmann_json::nlohmann_json)
+target_compile_definitions(sim_lola_peer PRIVATE MSGPACK_NO_BOOST)
+nao_warnings(sim_lola_peer)
+
 # run --backend nao with the full cognition: lola_peer's soak with --cameras files:DIR, frames
 # rendered by `nao-soccer render` in the test, every answer judged; alone, as lola_peer_test.
 add_executable(nao_cognition_test nao_cognition_test.cpp)
@@ -21,8 +30,9 @@ target_link_libraries(nao_cognition_test PRIVATE nlohmann_json::nlohmann_json GT
 target_include_directories(nao_cognition_test PRIVATE ${CMAKE_SOURCE_DIR})
 target_compile_definitions(nao_cognition_test PRIVATE NAO_BINARY="$<TARGET_FILE:nao-soccer>"
                                                        LOLA_PEER="$<TARGET_FILE:lola_peer>"
+                                                       SIM_LOLA_PEER="$<TARGET_FILE:sim_lola_peer>"
                                                        NAO_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
-add_dependencies(nao_cognition_test nao-soccer lola_peer)
+add_dependencies(nao_cognition_test nao-soccer lola_peer sim_lola_peer)
 nao_warnings(nao_cognition_test)
 gtest_discover_tests(nao_cognition_test DISCOVERY_TIMEOUT 60
                      PROPERTIES RUN_SERIAL TRUE TIMEOUT 300 LABELS "nao;${NAO_FRAGMENT_LABELS}")
@@ -33,6 +43,7 @@ target_compile_definitions(lola_test PRIVATE MSGPACK_NO_BOOST)
 nao_add_test(gamecontroller_test SOURCES gamecontroller_test.cpp LIBS nao_robot LABELS nao)
 nao_add_test(v4l2_test SOURCES v4l2_test.cpp LIBS nao_robot LABELS nao)
 nao_add_test(file_camera_test SOURCES file_camera_test.cpp LIBS nao_robot LABELS nao TIMEOUT 60)
+nao_add_test(socket_camera_test SOURCES socket_camera_test.cpp LIBS nao_robot LABELS nao TIMEOUT 60)
 
 # deploy_test (robot/deploy/deploy.sh --dry-run) is in tests/robot_bundle.cmake, with the robot bundle's tests.
 

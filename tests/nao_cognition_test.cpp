@@ -1,10 +1,11 @@
-// `run --backend nao` with the full cognition, end to end: the project's LoLA peer
+// `run --backend nao` with the full cognition, end to end. First the project's LoLA peer
 // (tests/lola_peer.cpp, a separate process judging every answer against the 12 ms cycle) runs
 // the real nao-soccer with --cameras files:DIR, where DIR holds frames the simulator rendered
 // here (`nao-soccer render`), fed through the NAO backend's camera hand-off at 30 Hz each.
 // Motion answers every LoLA packet in time while cognition runs on both cameras in its own
-// thread; an image cognition had no time for is dropped and counted. And the program is built
-// for the head LoLA names (its parameter overlay).
+// thread; an image cognition had no time for is dropped and counted. Then the simulator as a
+// whole NAO (tests/sim_lola_peer.cpp). And the program is built for the head LoLA names (its
+// parameter overlay).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +26,16 @@ namespace {
 namespace fs = std::filesystem;
 
 bool quick() { return std::getenv("NAO_TEST_QUICK") != nullptr; }  // the sanitizer run
+
+// Runs a shell command line: its wait status and what it wrote (stdout and stderr).
+std::pair<int, std::string> shell(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return {-1, "popen failed: " + cmd};
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, p)) out += buffer;
+  return {pclose(p), out};
+}
 
 nlohmann::json readJson(const fs::path& path) {
   std::ifstream f(path);
@@ -53,12 +65,7 @@ TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
   const std::string cmd = std::string(LOLA_PEER) + " --nao-soccer " + NAO_BINARY + " --soak " + std::to_string(seconds) +
                           " --cameras files:" + (dir / "frames").string() + " --arg --json --arg " + runJson.string() +
                           " --json " + peerJson.string() + " 2>&1";
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  char buffer[4096];
-  while (fgets(buffer, sizeof buffer, p)) out += buffer;
-  const int status = pclose(p);
+  const auto [status, out] = shell(cmd);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
 
   // The peer's own measurement: every answer within the cycle, every check passed.
@@ -95,6 +102,65 @@ TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
   if (!HasFailure()) fs::remove_all(dir);
 }
 
+// The simulator as the whole NAO (tests/sim_lola_peer.cpp): LoLA packets from the simulated
+// robot's sensors over the socket, its joints driven by the answers, both cameras rendered from
+// the same state and sent to --cameras socket:PATH. The program walks to a pose by its own
+// localization; the peer scores its belief against the truth, and the figures agree with
+// `run --backend sim` of the same scene.
+TEST(NaoCognition, TheSimulatedNaoThroughLolaAndTheCameraSocketLocalizesAndArrives) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "nao_sim_peer_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const int seconds = quick() ? 12 : 20;
+  const fs::path peerJson = dir / "peer.json", simJson = dir / "sim.json";
+  const std::string scene = " --goto -2,-1.5,0 --ball -1,-1";
+  const std::string cmd = std::string(SIM_LOLA_PEER) + " --nao-soccer " + NAO_BINARY + " --seconds " +
+                          std::to_string(seconds) + scene + " --json " + peerJson.string() + " 2>&1";
+  const auto [status, out] = shell(cmd);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  const nlohmann::json peer = readJson(peerJson);
+  ASSERT_TRUE(peer.contains("localization_error_m")) << out;
+  // Every answer within the cycle, on both sides.
+  EXPECT_EQ(peer["late_answers"], 0) << out;
+  EXPECT_EQ(peer["missing_answers"], 0) << out;
+  EXPECT_GE(peer["cycles_judged"].get<double>(), seconds / 0.012 - 2);
+  EXPECT_EQ(peer["program"]["lola"]["late"], 0);
+  EXPECT_TRUE(peer["program"]["clean_stop"].get<bool>());
+  // The frames went through the hand-off: 30 Hz per camera of simulated time, less the few a
+  // busy machine made the peer drop; cognition ran on each camera's frames.
+  for (const char* camera : {"top", "bottom"}) {
+    const double sent = peer["frames_sent"][camera].get<double>();
+    EXPECT_GE(sent, 0.8 * 30 * seconds) << camera;
+    EXPECT_GE(peer["program"]["images_processed"][camera].get<double>(), 0.9 * sent) << camera;
+  }
+  // The belief against the truth the program never saw.
+  EXPECT_EQ(peer["localization_valid_fraction"], 1.0);
+  EXPECT_LT(peer["localization_error_m"]["median"].get<double>(), 0.05) << peer.dump();
+  EXPECT_LT(peer["heading_error_deg"]["median"].get<double>(), 1.5) << peer.dump();
+  EXPECT_GE(peer["ball_error_m"]["samples"].get<int>(), seconds - 4);
+  EXPECT_LT(peer["ball_error_m"]["median"].get<double>(), 0.05) << peer.dump();
+  if (!quick()) {
+    EXPECT_LT(peer["goto"]["position_error_m"].get<double>(), 0.10) << peer.dump();
+    EXPECT_LT(peer["goto"]["heading_error_deg"].get<double>(), 5.0) << peer.dump();
+  }
+
+  // The same scene on the sim backend: the two beliefs are equally good, within noise.
+  const auto r = test::runCommand("run --backend sim --seconds " + std::to_string(seconds) + scene + " --json " +
+                                      simJson.string(),
+                                  300);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json sim = readJson(simJson);
+  const double simError = sim["localization_error_m"]["median"].get<double>();
+  const double naoError = peer["localization_error_m"]["median"].get<double>();
+  EXPECT_LT(naoError, simError + 0.03) << "nao " << naoError << " m, sim " << simError << " m";
+  const double simBall = sim["ball_error_m"]["median"].get<double>();
+  const double naoBall = peer["ball_error_m"]["median"].get<double>();
+  EXPECT_LT(naoBall, simBall + 0.03) << "nao " << naoBall << " m, sim " << simBall << " m";
+  std::printf("nao via sim_lola_peer: localization median %.4f m (sim %.4f m), ball %.4f m (sim %.4f m), %s\n", naoError,
+              simError, naoBall, simBall, peer["answer_ms"].dump().c_str());
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
 // The program is built for the head LoLA's first packet names: that head's parameter overlay
 // (config/robots/<head id>/) is read. Proof: a data root whose overlay for the peer's head holds
 // an unknown key stops the start with one line naming that file.
@@ -111,12 +177,7 @@ TEST(NaoCognition, TheProgramIsBuiltWithTheOverlayOfTheHeadLolaNames) {
   const fs::path peerJson = home / "peer.json";
   const std::string cmd = "NAO_SOCCER_HOME=" + home.string() + " " + LOLA_PEER + " --nao-soccer " + NAO_BINARY +
                           " --soak 2 --json " + peerJson.string() + " 2>&1";
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  char buffer[4096];
-  while (fgets(buffer, sizeof buffer, p)) out += buffer;
-  pclose(p);  // the peer fails: the program ended at the start
+  const std::string out = shell(cmd).second;  // the peer fails: the program ended at the start
   EXPECT_NE(out.find("run: parameters with this head's " + overlay.parent_path().string() + "/"), std::string::npos)
       << out;
   EXPECT_NE(out.find("nao-soccer run: " + overlay.string() + ": bogus: unknown parameter"), std::string::npos) << out;

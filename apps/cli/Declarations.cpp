@@ -74,8 +74,15 @@ void debugOptions(Command& c, DebugOptions& d) {
   c.outputFile("--debug-out", d.out, "where --debug writes (default stderr)")->needs(channels);
 }
 
-// --cameras files:DIR: DIR/top/ and DIR/bottom/ each hold PNG or JPEG images.
-std::string cameraFilesProblem(const std::string& s) {
+// --cameras files:DIR: DIR/top/ and DIR/bottom/ each hold PNG or JPEG images; socket:PATH: a
+// Unix socket path (it may appear later: the cameras wait for it).
+std::string cameraSourceProblem(const std::string& s) {
+  if (s.rfind("socket:", 0) == 0) {
+    const std::string path = s.substr(7);
+    if (path.empty()) return "socket: needs a path";
+    if (path.size() > 100) return "socket: a Unix socket path has at most 100 characters";
+    return "";
+  }
   const std::string prefix = "files:";
   if (s.rfind(prefix, 0) != 0) return "not a choice";
   const std::string dir = s.substr(prefix.size());
@@ -121,9 +128,10 @@ void CommandLine::declare() {
     c.numbers("--ball", r.ball, {{"X", "m", -20, 20}, {"Y", "m", -20, 20}}, "sim: a ball lying here (default: none)");
     c.onField("--ball", r.ball);
     c.choice("--cameras", r.cameras, {"on", "off", "none", "v4l2"},
-             "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2|files:DIR (default v4l2; "
-             "files: the PNG/JPEG images of DIR/top/ and DIR/bottom/ in name order, looping, 30 Hz each)",
-             "files:DIR", cameraFilesProblem);
+             "sim: on|off, both cameras rendered at 30 Hz (default on); nao: none|v4l2|files:DIR|socket:PATH (default "
+             "v4l2; files: the PNG/JPEG images of DIR/top/ and DIR/bottom/ in name order, looping, 30 Hz each; "
+             "socket: frames a simulator sends over the Unix socket PATH, as tests/sim_lola_peer does)",
+             "files:DIR|socket:PATH", cameraSourceProblem);
     c.outputFolder("--images", r.images, "sim: camera PNGs once a second and a field view into DIR");
     debugOptions(c, r.debug);
     NaoRunOptions& n = r.nao;
@@ -131,6 +139,9 @@ void CommandLine::declare() {
     c.text("--camera-top", n.cameraTop, "DEV", "nao: top camera device (default /dev/video-top)", pathProblem);
     c.text("--camera-bottom", n.cameraBottom, "DEV", "nao: bottom camera device (default /dev/video-bottom)", pathProblem);
     c.inputFile("--camera-settings", n.cameraSettings, "nao: camera resolution, exposure, gain, white balance (JSON)");
+    c.choice("--clock", n.clock, {"monotonic", "lola"},
+             "nao: the program's clock: monotonic (as on a NAO) or lola, 12 ms per LoLA packet, for a simulator "
+             "slower than real time (tests/sim_lola_peer; only with --cameras none or socket:PATH)");
     c.count("--team", n.team, 0, 254, "nao: team number for the GameController (0: none)");
     c.count("--player", n.player, 1, gc::kMaxPlayers, "nao: player number");
     c.count("--gc-port", n.gcPort, 1, 65535, "nao: GameController UDP port");
@@ -146,7 +157,10 @@ void CommandLine::declare() {
       const bool simValue = r.cameras == "on" || r.cameras == "off";
       if (!r.cameras.empty() && simValue != (r.backend == "sim"))
         return "--cameras: " + r.cameras + " is not a choice with --backend " + r.backend +
-               (r.backend == "sim" ? " (on or off)" : " (none, v4l2 or files:DIR)");
+               (r.backend == "sim" ? " (on or off)" : " (none, v4l2, files:DIR or socket:PATH)");
+      if (r.nao.clock == "lola" && (r.backend != "nao" || !(r.cameras == "none" || r.cameras.rfind("socket:", 0) == 0)))
+        return std::string("--clock lola: only with --backend nao and --cameras none or socket:PATH (its frames carry the "
+                           "LoLA clock)");
       if (r.backend == "sim" && r.seconds > 3600) return std::string("--seconds: at most 3600 with --backend sim");
       return std::string();
     });

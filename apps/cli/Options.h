@@ -34,6 +34,7 @@ struct NaoRunOptions {
   std::string cameraTop = "/dev/video-top", cameraBottom = "/dev/video-bottom", cameraSettings;
   int team = 0, player = 1, gcPort = 3838, gcReturnPort = 3939;
   std::string gcAddress = "0.0.0.0";
+  std::string clock = "monotonic";  // or "lola": 12 ms per LoLA packet
 };
 
 struct RunOptions {

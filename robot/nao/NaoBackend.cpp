@@ -186,7 +186,7 @@ bool NaoBackend::waitForSensors(SensorFrame& frame) {
       continue;
     }
     lola::toSensorFrame(sensors, frame);
-    frame.time = t;
+    frame.time = config_.lolaClock ? static_cast<double>(stats_.packets) * kCycleTime : t;
     frame.cycle = ++stats_.cycles;
     receivedAt_ = t;
     awaiting_ = true;
@@ -198,7 +198,7 @@ bool NaoBackend::takeImage(CameraId camera, CameraImage& image) {
   auto& cam = cameras_[static_cast<int>(camera)];
   if (!cam) return false;
   if (!cam->grab(image, monotonic())) return false;
-  image.timestamp -= start_;
+  if (!config_.lolaClock) image.timestamp -= start_;
   return true;
 }
 

@@ -24,6 +24,10 @@ struct NaoBackendConfig {
   double connectTimeout = 20;  // s to wait for LoLA's socket at start
   int staleCycles = 4;         // no sensor packet for this many cycles: soft
   int stopCycles = 3;          // soft answers after a stop request before the run ends
+  // The program's clock: false, CLOCK_MONOTONIC (as on a NAO: physics runs in real time); true,
+  // 12 ms per LoLA packet, for a simulated NAO slower than real time, whose camera frames then
+  // carry that clock too. LoLA's safety (stale packets, answer times) stays on the real clock.
+  bool lolaClock = false;
   Safety::Params safety;
   bool cameras = true;
   std::array<V4l2CameraConfig, kNumCameras> camera = defaultCameras();
@@ -64,6 +68,9 @@ class NaoBackend : public Backend {
   void setFallMonitor(std::function<std::string()> monitor) { fallMonitor_ = std::move(monitor); }
   Safety& safety() { return safety_; }
   double now() const;  // backend seconds since start
+  // CLOCK_MONOTONIC seconds of backend time 0: aligns this run's times (sensor frames, images,
+  // the JSON) with another process's clock, a simulator's truth or a log.
+  double clockOrigin() const { return start_; }
 
   // cycles: packets handed to the program; answered: of those, answered (late: after 12 ms).
   struct Stats {

@@ -6,6 +6,7 @@
 
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "robot/Debug.h"
@@ -65,6 +66,30 @@ TEST(Debug, SubscribedWritesOneJsonLinePerMessage) {
   EXPECT_DOUBLE_EQ(j[1].at("t").get<double>(), 12.512);
   EXPECT_EQ(j[1].at("value"), 7);
   EXPECT_EQ(sink.str().rfind("{\"channel\":\"test_alpha\",\"t\":12.5,", 0), 0u) << "channel and t lead";
+}
+
+// Motion and cognition write from threads of their own on a NAO: each line carries the time of
+// the cycle or image its own thread is processing, never the other cadence's.
+TEST(Debug, EachThreadsLinesCarryItsOwnTime) {
+  std::ostringstream sink;
+  DebugChannels debug(sink);
+  debug.subscribe("test_alpha,test_beta");
+  auto writer = [&debug](const DebugChannel& channel, double base) {
+    for (int i = 0; i < 2000; ++i) {
+      debug.setTime(base + i);
+      std::this_thread::yield();
+      debug.write(channel, nlohmann::json{{"i", i}});
+    }
+  };
+  std::thread motion(writer, std::cref(kAlpha), 0.0), cognition(writer, std::cref(kBeta), 1e6);
+  motion.join();
+  cognition.join();
+  const auto j = lines(sink.str());
+  ASSERT_EQ(j.size(), 4000u);
+  for (const auto& line : j) {
+    const double base = line.at("channel") == "test_alpha" ? 0.0 : 1e6;
+    EXPECT_DOUBLE_EQ(line.at("t").get<double>(), base + line.at("i").get<double>()) << line.dump();
+  }
 }
 
 TEST(Debug, UnknownChannelIsRefusedNamingTheKnownOnes) {
