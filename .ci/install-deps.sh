@@ -9,12 +9,14 @@ packages=(
   libopencv-dev          # image I/O, debug drawing
   libceres-dev           # least squares (calibration)
   libmsgpack-cxx-dev     # LoLA packets
+  libstb-dev             # stb_image: the robot executable's PNG/JPEG decoder (--cameras files:DIR)
   nlohmann-json3-dev     # JSON config and results
   libcli11-dev           # the declared command line (apps/cli/)
   libtinyxml2-dev        # MJCF scene assembly (prefixing robot copies)
   libgtest-dev           # tests
   rsync                  # robot/deploy/deploy.sh copies the robot bundle
   debootstrap            # the Debian 11 root the robot bundle is tested in (tests/robot_bundle.cmake)
+  qemu-user              # the robot executable on a CPU without AVX (tests/robot_bundle.cmake)
   clang libclang-rt-14-dev  # libFuzzer targets of the LoLA and GameController parsers (.ci/fuzz.sh)
 )
 missing=()

@@ -12,10 +12,8 @@ namespace nao::cli {
 
 int renderCommand(const RenderOptions& o);
 int runCommand(const RunOptions& o);
-// apps/RunNao.cpp. readImage: decodes a PNG/JPEG for --cameras files:DIR (sim::readImage in
-// nao-soccer; nao-soccer-robot has no image decoding and refuses files:).
-using ImageFileReader = std::function<CameraImage(const std::string& path, CameraId camera)>;
-int runNao(const RunOptions& o, ImageFileReader readImage = {});
+// apps/RunNao.cpp: the same in nao-soccer and nao-soccer-robot.
+int runNao(const RunOptions& o);
 int benchSimCommand(const BenchSimOptions& o);
 int benchProgramCommand(const BenchProgramOptions& o);
 int benchPerceptionCommand(const BenchPerceptionOptions& o);

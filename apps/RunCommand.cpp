@@ -7,44 +7,17 @@
 #include <iterator>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
 #include "robot/Error.h"
 #include "scenarios/SimRun.h"
-#include "sim/ImageIO.h"
 
 namespace nao::cli {
 
-namespace {
-
-// --cameras files:DIR's decoder (run in FileCamera's thread). Not sim::readImage: that keeps
-// libpng's warnings off the terminal by pointing fd 2 elsewhere while it decodes, for the whole
-// process, which would swallow the other threads' log lines.
-CameraImage decodeCameraFile(const std::string& path, CameraId camera) {
-  std::ifstream f(path, std::ios::binary);
-  const std::vector<uchar> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  cv::Mat bgr;
-  try {
-    if (!bytes.empty()) bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    throw Error(path, "not a readable PNG or JPEG image: " + e.err);
-  }
-  if (bgr.empty() || bgr.cols < 2) throw Error(path, "not a readable PNG or JPEG image");
-  if (bgr.cols % 2 != 0) bgr = bgr.colRange(0, bgr.cols - 1).clone();  // YUYV pairs
-  cv::Mat rgb;
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-  return sim::cameraImageFromRgb(rgb, camera);
-}
-
-}  // namespace
-
 int runCommand(const RunOptions& options) {
   if (options.backend == "nao")
-    return runNao(options, decodeCameraFile);
+    return runNao(options);
 
   sim::SimRunOptions o;
   o.field = fieldFrom(options.common);

@@ -22,6 +22,7 @@
 
 #include "controllers/RobotProgram.h"
 #include "representations/modeling/BallModel.h"
+#include "representations/perception/CameraPercepts.h"
 #include "representations/modeling/RobotPose.h"
 #include "perception/calibration/CalibrationStore.h"
 #include "perception/FieldDimensions.h"
@@ -32,6 +33,7 @@
 #include "representations/infrastructure/SafetyState.h"
 #include "robot/nao/FileCamera.h"
 #include "robot/nao/GameController.h"
+#include "robot/nao/ImageDecoder.h"
 #include "robot/nao/ImageFiles.h"
 #include "robot/nao/NaoBackend.h"
 #include "robot/nao/SocketCamera.h"
@@ -98,6 +100,15 @@ void useRealTimePriority() {
   }
 }
 
+// What cognition saw, per camera: a team reads at a glance whether the vision works at a venue.
+struct PerceptTally {
+  long processed = 0, withLines = 0, lines = 0, balls = 0, fieldBoundary = 0;
+  nlohmann::json json() const {
+    return {{"processed", processed}, {"with_lines", withLines}, {"lines", lines}, {"balls", balls},
+            {"field_boundary", fieldBoundary}};
+  }
+};
+
 double threadCpuMs() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
@@ -128,7 +139,7 @@ CameraCalibration storedCalibration(const std::string& headId) {
 
 }  // namespace
 
-int runNao(const RunOptions& options, ImageFileReader readImage) {
+int runNao(const RunOptions& options) {
   const NaoRunOptions& nao = options.nao;
   std::optional<double> seconds;
   if (options.common.has("--seconds")) seconds = options.seconds;
@@ -142,7 +153,6 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
   // --cameras files:DIR: the images of DIR/top/ and DIR/bottom/ through the backend's camera
   // hand-off instead of V4L2 (the folders were checked with the command line).
   if (options.cameras.rfind("files:", 0) == 0) {
-    if (!readImage) throw Error("--cameras", "files: is not in this executable (it decodes no PNG/JPEG; use nao-soccer)");
     const std::string dir = options.cameras.substr(6);
     const double start = monotonicSeconds();
     std::string counts;
@@ -150,7 +160,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
       std::vector<std::string> files = imageFilesIn(dir + "/" + cameraName(cam));
       counts += (counts.empty() ? "" : ", ") + std::to_string(files.size()) + " " + cameraName(cam);
       config.sources[static_cast<int>(cam)] =
-          std::make_shared<FileCamera>(cam, std::move(files), readImage, start, kCameraPeriod, logLine);
+          std::make_shared<FileCamera>(cam, std::move(files), decodeImageFile, start, kCameraPeriod, logLine);
     }
     logLine("run: cameras from the files in " + dir + " (" + counts + "), 30 Hz each, looping");
   }
@@ -232,6 +242,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
   // CPU time of the motion cadence (this thread's, so waiting for LoLA's next packet does not
   // count): the budget a team sees on the Atom. Cognition measures its own thread.
   nlohmann::json beliefs = nlohmann::json::array();
+  std::array<PerceptTally, kNumCameras> seen{};
   double cpuSumMs = 0, cpuMaxMs = 0;
   std::uint64_t cpuCycles = 0;
   if (program) {
@@ -247,7 +258,17 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
     });
     // The belief once a second of image time, for the JSON: pose and ball as cognition left them
     // after that image (the cognition thread writes, this one reads after it has stopped).
-    program->setCognitionObserver([&beliefs, next = 0.0](const CameraImage& image, const Blackboard& cognition) mutable {
+    program->setCognitionObserver([&beliefs, &seen, next = 0.0](const CameraImage& image,
+                                                                 const Blackboard& cognition) mutable {
+      if (cognition.has<CameraPercepts>()) {
+        const CameraPercepts& p = cognition.read<CameraPercepts>();
+        PerceptTally& t = seen[static_cast<int>(p.camera)];
+        t.processed += p.processed;
+        t.withLines += !p.lines.empty();
+        t.lines += static_cast<long>(p.lines.size());
+        t.balls += p.ball.seen;
+        t.fieldBoundary += p.fieldBoundary.valid;
+      }
       if (image.timestamp < next || !cognition.has<RobotPose>()) return;
       next = std::floor(image.timestamp) + 1;
       const RobotPose& pose = cognition.read<RobotPose>();
@@ -362,6 +383,7 @@ int runNao(const RunOptions& options, ImageFileReader readImage) {
         {"images_processed", {{"top", processed[0]}, {"bottom", processed[1]}}},
         {"images_dropped", {{"top", dropped[0]}, {"bottom", dropped[1]}}},
         {"images_skipped", skippedImages},
+        {"percepts", {{"top", seen[0].json()}, {"bottom", seen[1].json()}}},
         {"cognition",
          {{"ms_per_image", {{"mean", cognitionMeanMs}, {"max", cognition.wallMsMax}}},
           {"cpu_ms_per_image", cognitionCpuMs},

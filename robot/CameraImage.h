@@ -1,6 +1,8 @@
 #pragma once
 // A camera image exactly as the NAO delivers it: YUV422 (YUYV: Y0 U Y1 V per pixel pair),
 // upright, row 0 at the top. Pixel (i, j) covers [i, i+1) x [j, j+1); its centre is (i+0.5, j+0.5).
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -25,5 +27,17 @@ struct CameraImage {
   std::uint8_t u(int x, int yy) const { return yuyv[(static_cast<std::size_t>(yy) * width + (x & ~1)) * 2 + 1]; }
   std::uint8_t v(int x, int yy) const { return yuyv[(static_cast<std::size_t>(yy) * width + (x & ~1)) * 2 + 3]; }
 };
+
+// One YUYV pixel pair from two RGB pixels (BT.601 full range, U and V from the pair's mean):
+// how the simulator's renders and decoded image files become what a NAO camera delivers.
+inline void yuyvPairFromRgb(const std::uint8_t* rgb, std::uint8_t* yuyv) {
+  auto byte = [](double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
+  const double r0 = rgb[0], g0 = rgb[1], b0 = rgb[2], r1 = rgb[3], g1 = rgb[4], b1 = rgb[5];
+  const double ra = (r0 + r1) / 2, ga = (g0 + g1) / 2, ba = (b0 + b1) / 2;
+  yuyv[0] = byte(0.299 * r0 + 0.587 * g0 + 0.114 * b0);
+  yuyv[1] = byte(128 - 0.168736 * ra - 0.331264 * ga + 0.5 * ba);
+  yuyv[2] = byte(0.299 * r1 + 0.587 * g1 + 0.114 * b1);
+  yuyv[3] = byte(128 + 0.5 * ra - 0.418688 * ga - 0.081312 * ba);
+}
 
 }  // namespace nao

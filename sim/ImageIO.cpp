@@ -94,14 +94,7 @@ cv::Mat yuyvFromRgb(const cv::Mat& rgb) {
   for (int r = 0; r < rgb.rows; ++r) {
     const std::uint8_t* in = rgb.ptr<std::uint8_t>(r);
     std::uint8_t* o = out.ptr<std::uint8_t>(r);
-    for (int c = 0; c < rgb.cols; c += 2, in += 6, o += 4) {
-      const double r0 = in[0], g0 = in[1], b0 = in[2], r1 = in[3], g1 = in[4], b1 = in[5];
-      const double ra = (r0 + r1) / 2, ga = (g0 + g1) / 2, ba = (b0 + b1) / 2;
-      o[0] = clampByte(0.299 * r0 + 0.587 * g0 + 0.114 * b0);
-      o[1] = clampByte(128 - 0.168736 * ra - 0.331264 * ga + 0.5 * ba);
-      o[2] = clampByte(0.299 * r1 + 0.587 * g1 + 0.114 * b1);
-      o[3] = clampByte(128 + 0.5 * ra - 0.418688 * ga - 0.081312 * ba);
-    }
+    for (int c = 0; c < rgb.cols; c += 2, in += 6, o += 4) yuyvPairFromRgb(in, o);
   }
   return out;
 }

@@ -19,6 +19,12 @@ if(NOT NAO_SANITIZE)
   # The bundle in chroot against lola_peer for 10 s: a root with nothing but the bundle, and a
   # Debian 11 root (debootstrap, cached; skipped when Debian's mirror cannot be reached). Alone
   # (RUN_SERIAL), as lola_peer_test: every answer is judged against the 12 ms cycle.
+  # The robot executable under qemu-user's Nehalem model (no AVX, as the NAO's Atom): its whole
+  # cognition on the real NAO images (skipped without qemu-user or ../shared).
+  add_test(NAME robot_noavx_test
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/robot_noavx_test.sh $<TARGET_FILE:nao-soccer-robot>
+                   $<TARGET_FILE:lola_peer> ${CMAKE_SOURCE_DIR})
+  set_tests_properties(robot_noavx_test PROPERTIES RUN_SERIAL TRUE TIMEOUT 300 SKIP_RETURN_CODE 77 LABELS "nao")
   foreach(root empty debian11)
     add_test(NAME robot_bundle_${root}_root_test
              COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/robot_bundle_test.sh ${root} $<TARGET_FILE:nao-soccer-robot>

@@ -34,18 +34,10 @@ CameraImage toCameraImage(const cv::Mat& rgb, CameraId camera = CameraId::Top) {
   img.width = rgb.cols & ~1;
   img.height = rgb.rows;
   img.yuyv.resize(static_cast<std::size_t>(img.width) * img.height * 2);
-  auto clampByte = [](double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
   for (int y = 0; y < img.height; ++y) {
     const std::uint8_t* in = rgb.ptr<std::uint8_t>(y);
     std::uint8_t* o = img.yuyv.data() + static_cast<std::size_t>(y) * img.width * 2;
-    for (int x = 0; x < img.width; x += 2, in += 6, o += 4) {
-      const double r0 = in[0], g0 = in[1], b0 = in[2], r1 = in[3], g1 = in[4], b1 = in[5];
-      const double ra = (r0 + r1) / 2, ga = (g0 + g1) / 2, ba = (b0 + b1) / 2;
-      o[0] = clampByte(0.299 * r0 + 0.587 * g0 + 0.114 * b0);
-      o[1] = clampByte(128 - 0.168736 * ra - 0.331264 * ga + 0.5 * ba);
-      o[2] = clampByte(0.299 * r1 + 0.587 * g1 + 0.114 * b1);
-      o[3] = clampByte(128 + 0.5 * ra - 0.418688 * ga - 0.081312 * ba);
-    }
+    for (int x = 0; x < img.width; x += 2, in += 6, o += 4) yuyvPairFromRgb(in, o);
   }
   return img;
 }

@@ -153,11 +153,6 @@ class RenderWorker {
     std::lock_guard<std::mutex> lock(mutex_);
     return std::exchange(done_, {});
   }
-  // Waits for the render in progress (the end of a run).
-  void drain() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    wake_.wait(lock, [this] { return !job_ || stop_; });
-  }
   std::string error() {
     std::lock_guard<std::mutex> lock(mutex_);
     return error_;
