@@ -403,6 +403,7 @@ int runPeer(const Options& o) {
     check(run.value("clock", "") == "lola", "the program did not run on the LoLA clock");
     std::vector<double> position, heading, ballErrors;
     long beliefs = 0, valid = 0;
+    nlohmann::json perSecond = nlohmann::json::array();
     for (const auto& b : run["per_second"]) {
       const double t = b["image_time"].get<double>();
       if (t < 2 || holdEndSim < 0) continue;  // as run --backend sim: after the first 2 s
@@ -410,6 +411,13 @@ int runPeer(const Options& o) {
       if (packet < 1 || packet > truths.size()) continue;
       const auto it = truths.begin() + static_cast<long>(packet - 1);
       ++beliefs;
+      nlohmann::json second = {{"t", t},
+                               {"true_pose", {it->pose.x(), it->pose.y(), it->pose.z() * 180 / M_PI}},
+                               {"estimated_pose", b["estimated_pose"]},
+                               {"valid", b["valid"]}};
+      if (it->ball) second["true_ball"] = {it->ball->x(), it->ball->y()};
+      if (b.contains("ball")) second["ball"] = b["ball"];
+      perSecond.push_back(second);
       if (!b["valid"].get<bool>()) continue;
       ++valid;
       const auto& e = b["estimated_pose"];
@@ -423,6 +431,7 @@ int runPeer(const Options& o) {
       }
     }
     out["beliefs"] = beliefs;
+    out["per_second"] = perSecond;  // the program's belief beside the truth (field frame; ball: robot frame)
     out["localization_valid_fraction"] = beliefs ? static_cast<double>(valid) / static_cast<double>(beliefs) : 0.0;
     out["localization_error_m"] = {{"median", percentile(position, 0.5)}, {"p95", percentile(position, 0.95)},
                                    {"max", percentile(position, 1.0)}};
