@@ -4,6 +4,7 @@
 // the file's index into the image, so the order is checked from the frames themselves.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -51,6 +52,23 @@ TEST(FileCamera, FramesInOrderLoopingAtTheirDueTimes) {
     EXPECT_DOUBLE_EQ(image.timestamp, due);
     EXPECT_FALSE(camera.grab(image, due + 0.005)) << "one frame per period";
   }
+}
+
+// A looping replay decodes each file once: later rounds come from the camera's cache.
+TEST(FileCamera, EachFileIsDecodedOnceWhileTheFramesFitTheCache) {
+  std::atomic<int> decodes{0};
+  auto counting = [&decodes](const std::string& path, CameraId camera) {
+    ++decodes;
+    return decodeIndex(path, camera);
+  };
+  const double period = 1.0 / 30;
+  FileCamera camera(CameraId::Top, {"/x/f0.png", "/x/f1.png"}, counting, 0.0, period);
+  CameraImage image;
+  for (int frame = 0; frame < 8; ++frame) {
+    ASSERT_TRUE(grabWithin(camera, image, frame * period + 0.001)) << frame;
+    EXPECT_EQ(image.yuyv[0], frame % 2) << frame;
+  }
+  EXPECT_EQ(decodes.load(), 2);
 }
 
 TEST(FileCamera, AfterAStallTheNextFrameIsNotABurst) {

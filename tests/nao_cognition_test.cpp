@@ -127,10 +127,11 @@ TEST(NaoCognition, TheSimulatedNaoThroughLolaAndTheCameraSocketLocalizesAndArriv
   EXPECT_EQ(peer["program"]["lola"]["late"], 0);
   EXPECT_TRUE(peer["program"]["clean_stop"].get<bool>());
   // The frames went through the hand-off: 30 Hz per camera of simulated time, less the few a
-  // busy machine made the peer drop; cognition ran on each camera's frames.
+  // busy machine made the peer drop (many under the sanitizers, whose renders take longer than
+  // a frame); cognition ran on each camera's frames.
   for (const char* camera : {"top", "bottom"}) {
     const double sent = peer["frames_sent"][camera].get<double>();
-    EXPECT_GE(sent, 0.8 * 30 * seconds) << camera;
+    EXPECT_GE(sent, (quick() ? 0.3 : 0.8) * 30 * seconds) << camera;
     EXPECT_GE(peer["program"]["images_processed"][camera].get<double>(), 0.9 * sent) << camera;
   }
   // The belief against the truth the program never saw.

@@ -24,6 +24,10 @@ FileCamera::~FileCamera() {
 void FileCamera::decodeLoop() {
   std::size_t index = 0, brokenCount = 0;
   std::vector<bool> broken(files_.size(), false);  // logged once, then left out
+  // A folder replays in a loop: each file is decoded once while the frames fit kCacheBytes, so
+  // a replay costs no decoding CPU beside the program after the first round.
+  std::vector<CameraImage> cache(files_.size());
+  std::size_t cachedBytes = 0;
   CameraImage image;
   for (;;) {
     {
@@ -35,8 +39,16 @@ void FileCamera::decodeLoop() {
     index = (index + 1) % files_.size();
     if (broken[i]) continue;
     try {
-      image = decode_(files_[i], camera_);
-      image.camera = camera_;
+      if (cache[i].valid()) {
+        image = cache[i];
+      } else {
+        image = decode_(files_[i], camera_);
+        image.camera = camera_;
+        if (image.valid() && cachedBytes + image.yuyv.size() <= kCacheBytes) {
+          cachedBytes += image.yuyv.size();
+          cache[i] = image;
+        }
+      }
     } catch (const std::exception& e) {
       broken[i] = true;
       if (log_) log_(std::string("camera ") + cameraName(camera_) + ": skipped " + e.what());

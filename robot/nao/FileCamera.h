@@ -3,7 +3,8 @@
 // name order, looping, one frame per period, to replay a recording or to run the NAO backend's
 // cognition without a camera. Frames are decoded ahead in a thread of the camera's own, so
 // grab() only swaps a ready buffer out, as V4l2Camera's grab() copies a dequeued one: a slow
-// decode never holds up the motion cycle that takes the image. The files: imageFilesIn
+// decode never holds up the motion cycle that takes the image; each file is decoded once while
+// the frames fit a cache of FileCamera::kCacheBytes. The files: imageFilesIn
 // (robot/nao/ImageFiles.h).
 #include <condition_variable>
 #include <functional>
@@ -30,6 +31,9 @@ class FileCamera : public CameraSource {
   ~FileCamera() override;
   FileCamera(const FileCamera&) = delete;
   FileCamera& operator=(const FileCamera&) = delete;
+
+  // Decoded frames kept for the next round of the loop (a 640x480 frame is 600 KB).
+  static constexpr std::size_t kCacheBytes = 256u << 20;
 
   // A frame when one is due and decoded; its timestamp is the time it was due.
   bool grab(CameraImage& image, double now) override;
