@@ -115,13 +115,16 @@ TEST(NaoCognition, TheSimulatedNaoThroughLolaAndTheCameraSocketLocalizesAndArriv
   const fs::path peerJson = dir / "peer.json", simJson = dir / "sim.json";
   const std::string scene = " --goto -2,-1.5,0 --ball -1,-1";
   const std::string cmd = std::string(SIM_LOLA_PEER) + " --nao-soccer " + NAO_BINARY + " --seconds " +
-                          std::to_string(seconds) + scene + " --json " + peerJson.string() + " 2>&1";
+                          std::to_string(seconds) + scene + (quick() ? " --sanitized" : "") + " --json " +
+                          peerJson.string() + " 2>&1";
   const auto [status, out] = shell(cmd);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
   const nlohmann::json peer = readJson(peerJson);
   ASSERT_TRUE(peer.contains("localization_error_m")) << out;
-  // Every answer within the cycle, on both sides.
-  EXPECT_EQ(peer["late_answers"], 0) << out;
+  // Every answer within the cycle, on both sides (under the sanitizers, whose peer and program
+  // share two cores at several times the cost, at most 1 % over it from the peer's view).
+  if (quick()) EXPECT_LE(peer["late_answers"].get<double>(), 0.01 * seconds / 0.012) << out;
+  else EXPECT_EQ(peer["late_answers"], 0) << out;
   EXPECT_EQ(peer["missing_answers"], 0) << out;
   EXPECT_GE(peer["cycles_judged"].get<double>(), seconds / 0.012 - 2);
   EXPECT_EQ(peer["program"]["lola"]["late"], 0);
