@@ -286,7 +286,6 @@ int runPeer(const Options& o) {
   double tick = monotonic() + 0.05;
   double nextProgress = 10;
   std::optional<Eigen::Vector3d> finalTruth;
-  std::optional<Eigen::Vector2d> finalBall;
   bool stopSent = false;
   int afterStop = 0;
   SensorFrame frame;
@@ -296,7 +295,7 @@ int runPeer(const Options& o) {
       break;
     }
     sleepUntil(tick);
-    if (monotonic() - tick > kCycle) {  // rendering held the peer up: on from now, no burst
+    if (monotonic() - tick > kCycle) {  // a busy machine held the peer up: on from now, no burst
       tick = monotonic();
       ++behind;
     }
@@ -361,7 +360,6 @@ int runPeer(const Options& o) {
     }
     if (!stopSent && !holding && frame.time >= holdEndSim + o.seconds) {
       finalTruth = world.robotPose(0);
-      if (world.ballCount() > 0) finalBall = world.ballPosition(0).head<2>();
       kill(child.pid, SIGTERM);
       stopSent = true;
     }
