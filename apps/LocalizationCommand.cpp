@@ -89,6 +89,8 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
                  fixed(one["valid_fraction"], "%.0f", 100).c_str(), fixed(one["mirrored_fraction"], "%.1f", 100).c_str(),
                  extra.c_str(), row.at("wall_s").get<double>());
   };
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
   std::vector<nlohmann::json> rows;
   std::ofstream rowFile;
   if (!options.rows.empty()) {

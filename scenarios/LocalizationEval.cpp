@@ -166,6 +166,7 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
   config.headId = backend.robotInfo().headId;
   config.field = o.field;
   config.goTo = legs.front();
+  config.debug = o.debug;
   RobotProgram program(config);
 
   // --- the scorer (reads the truth; the robot program never does) ---
@@ -316,6 +317,8 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
                      {"error_before_m", rounded(errorBefore, 1e4)},
                      {"error_after_m", rounded(errorAfterKidnap, 1e4)},  // the first image after it
                      {"distance_m", rounded((Eigen::Vector2d(to.x(), to.y()) - before.translation()).norm(), 1e4)},
+                     {"from", {rounded(before.x, 1e3), rounded(before.y, 1e3), rounded(before.theta / kDeg, 1e1)}},
+                     {"to", {rounded(to.x(), 1e3), rounded(to.y(), 1e3), rounded(to.z() / kDeg, 1e1)}},
                      {"turn_deg", rounded(std::abs(Pose2::wrap(to.z() - before.theta)) / kDeg, 1e3)},
                      {"error_end_m", rounded((estimateNow(program.cognitionBoard()).pose.translation() - after.translation()).norm(), 1e4)},
                      {"mirrored_end", (estimateNow(program.cognitionBoard()).pose.translation() + after.translation()).norm() <

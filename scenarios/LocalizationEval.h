@@ -18,6 +18,10 @@
 #include "perception/FieldDimensions.h"
 #include "sim/Lighting.h"
 
+namespace nao {
+class DebugChannels;
+}
+
 namespace nao::sim {
 
 enum class LocalizationTrialKind { Walk, Kidnap, Rolling };
@@ -34,6 +38,7 @@ struct LocalizationEvalOptions {
   int kidnapEvery = 4;        // trial seeds with s % kidnapEvery == kidnapEvery - 1 end with a kidnap; 0: none
   int rollEvery = 4;          // trial seeds with s % rollEvery == 1 end with a rolling ball (unless kidnapped); 0: none
   std::function<void(const nlohmann::json& row, int done, int total)> progress;  // after each trial
+  DebugChannels* debug = nullptr;  // the robot program's debug channels (not owned); null: none
 };
 
 // Settings a row was made with: rows of other settings are refused when resuming.

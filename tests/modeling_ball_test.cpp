@@ -315,6 +315,47 @@ TEST(BallFilter, OutliersDoNotMoveTheLyingBall) {
   EXPECT_LT(*std::max_element(errs.begin(), errs.end()), 0.05);
 }
 
+// A false percept now and then is never the ball, even at the same spot (a penalty mark taken
+// for a ball every second): not before the ball was seen, not while it is remembered out of
+// view; it neither moves the ball nor counts as seeing it. A ball seen in confirmPercepts
+// images within confirmWindow is.
+TEST(BallFilter, ASingleFalsePerceptIsNeverTheBall) {
+  std::mt19937_64 rng(seed(9));
+  BallFilter f;
+  const int confirm = f.params().confirmPercepts;
+  ASSERT_GE(confirm, 2);
+  double t = 0;
+  auto cycle = [&](std::vector<BallObservation> obs, bool expected = false) {
+    BallInput in;
+    in.time = t;
+    in.observations = std::move(obs);
+    in.ballExpectedInView = expected;
+    t += kDt;
+    return f.update(in);
+  };
+  const BallObservation falseBall{Vec2(3.0, -1.0), Eigen::Matrix2d::Identity() * 0.01};
+  EXPECT_FALSE(cycle({falseBall}).valid);
+  for (int i = 0; i < 10; ++i) EXPECT_FALSE(cycle({}).valid);
+  // The true ball: the model only from the confirming percept on.
+  const Vec2 truth(1.0, 0.5);
+  for (int i = 1; i <= confirm; ++i) EXPECT_EQ(cycle({observe(truth, rng)}).valid, i >= confirm) << "percept " << i;
+  for (int i = 0; i < 10; ++i) cycle({observe(truth, rng)});
+  const double seen = f.model().seenTime;
+  // Remembered out of view; a false percept elsewhere, now and then.
+  for (int i = 0; i < 200; ++i) {
+    const BallModel m = cycle(i % 40 == 0 ? std::vector<BallObservation>{falseBall} : std::vector<BallObservation>{});
+    ASSERT_TRUE(m.valid);
+    EXPECT_LT((m.position - truth).norm(), 0.05) << i;
+    EXPECT_DOUBLE_EQ(m.seenTime, seen) << i;
+  }
+  // In view, unseen, while scattered false percepts come elsewhere: lost all the same.
+  for (int i = 0; i < f.params().lostAfterFrames; ++i)
+    cycle({{Vec2(3.0 + 0.7 * i, -1.0 - 0.5 * i), Eigen::Matrix2d::Identity() * 0.01}}, true);
+  EXPECT_TRUE(f.model().valid);
+  EXPECT_TRUE(f.model().lost);
+  EXPECT_LT((f.model().position - truth).norm(), 0.05);
+}
+
 TEST(BallFilter, NonFiniteInputsAreSkipped) {
   std::mt19937_64 rng(seed(9));
   BallFilter f;

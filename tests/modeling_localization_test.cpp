@@ -179,13 +179,32 @@ class PerceptGenerator {
   std::mt19937_64 rng_;
 };
 
+// The ground a View surely shows, for FieldPercepts::view (negative information): a convex
+// polygon inside its sector (the far arc by chords), counter-clockwise.
+std::vector<Vec2> viewPolygon(const View& v) {
+  auto at = [](double r, double a) { return Vec2(r * std::cos(a), r * std::sin(a)); };
+  std::vector<Vec2> p{at(v.minRange, v.yaw - v.halfFov)};
+  constexpr int kArc = 8;
+  for (int k = 0; k <= kArc; ++k) p.push_back(at(v.maxRange, v.yaw - v.halfFov + 2 * v.halfFov * k / kArc));
+  p.push_back(at(v.minRange, v.yaw + v.halfFov));
+  return p;
+}
+
 // The two cameras: the top one far and coarse, the bottom one near and fine; the head pans.
+// Each image says which ground it surely showed (at most 3 m away), as the robot program's do.
 struct Cameras {
   Noise topNoise{0.02, 0.03}, bottomNoise{0.01, 0.02};
+  bool negative = true;
   std::vector<FieldPercepts> perceive(PerceptGenerator& gen, const Pose2& truth, double t) const {
     const double yaw = 60 * kDeg * std::sin(2 * kPi * t / 4.0);
     View top{yaw, 28 * kDeg, 0.5, 5.0}, bottom{yaw, 28 * kDeg, 0.15, 1.0};
-    return {gen.perceive(truth, top, topNoise, t), gen.perceive(truth, bottom, bottomNoise, t)};
+    std::vector<FieldPercepts> out{gen.perceive(truth, top, topNoise, t), gen.perceive(truth, bottom, bottomNoise, t)};
+    if (negative) {
+      top.maxRange = 3.0;
+      out[0].view = viewPolygon(top);
+      out[1].view = viewPolygon(bottom);
+    }
+    return out;
   }
 };
 
@@ -661,6 +680,44 @@ TEST(SelfLocator, FeatureCandidatesMatchTheTruth) {
     for (const auto& q : cands)
       EXPECT_LT(std::min(positionError(q, c.truth), positionError(SelfLocator::mirror(q), c.truth)), 0.05) << c.what;
   }
+}
+
+// Negative information: a hypothesis that puts the centre circle and the halfway line right in
+// front of the robot, while its images show only the empty ground beyond a side line, loses
+// its validity; without the images' views it could not (no percept contradicts it), and the
+// true pose, which expects nothing there, keeps it.
+TEST(SelfLocator, AHypothesisWhoseLinesTheImagesDoNotShowLosesItsValidity) {
+  const FieldModel field = standardField();
+  const Pose2 truth(-0.5 * field.halfLength(), -field.halfWidth(), -kPi / 2);  // at the side line, facing out
+  const Pose2 wrong(-1.5, 0, 0);                                                 // facing the centre circle
+  PerceptGenerator gen(field, seed(77));
+  gen.falseLineRate = gen.falsePointRate = 0;
+  auto run = [&](const Pose2& believed, bool withView) {
+    SelfLocator loc(field);
+    loc.resetTo(believed, {0.05, 0.05, 0.05});
+    const View view{0, 28 * kDeg, 0.5, 3.0};
+    for (int i = 0; i < 60; ++i) {
+      LocalizationInput in;
+      FieldPercepts p = gen.perceive(truth, view, Noise{}, i * kFrameDt);
+      EXPECT_TRUE(p.lines.lines.empty() && !p.lines.circle.found);  // nothing lies there
+      if (withView) p.view = viewPolygon(view);
+      in.percepts = {p};
+      loc.update(in);
+    }
+    return loc;
+  };
+  const SelfLocator wrongWithView = run(wrong, true), wrongBlind = run(wrong, false), right = run(truth, true);
+  std::printf("wrong pose: quality %.2f with the views (negative images %ld), %.2f without; true pose %.2f\n",
+              wrongWithView.estimate().quality, wrongWithView.stats().negativeImages, wrongBlind.estimate().quality,
+              right.estimate().quality);
+  EXPECT_LT(wrongWithView.estimate().quality, 0.1);
+  EXPECT_FALSE(wrongWithView.estimate().valid);
+  EXPECT_EQ(wrongWithView.stats().negativeImages, 60);
+  EXPECT_TRUE(wrongBlind.estimate().valid);
+  EXPECT_TRUE(right.estimate().valid);
+  EXPECT_EQ(right.stats().negativeImages, 0);
+  // What it expected: the halfway line's run across the view and the circle's near arc.
+  EXPECT_GT(wrongWithView.expectedLineLength(Eigen::Vector3d(wrong.x, wrong.y, wrong.theta), viewPolygon(View{0, 28 * kDeg, 0.5, 3.0})), 2.0);
 }
 
 TEST(ModelingTypes, OdometryDeltaAndSigmas) {

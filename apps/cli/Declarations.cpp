@@ -259,6 +259,7 @@ void CommandLine::declare() {
     cl.count("--roll-every", l.rollEvery, 0, 1000, "trial seeds s with s mod N = 1 end with a rolling ball (0: none)");
     cl.outputFile("--rows", l.rows,
                   "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
+    debugOptions(cl, l.debug);
     EvalMotionOptions& w = o.evalWalk;
     w.seconds = 60;
     Command& cw = leaf(eval, "walk", "random walk commands every 2-5 s: falls, odometry error", w.common);

@@ -105,6 +105,7 @@ struct EvalLocalizationOptions {
   int trials = 8, kidnapEvery = 4, rollEvery = 4;
   double seconds = 20;
   bool randomize = false;
+  DebugOptions debug;
 };
 
 struct EvalMotionOptions {  // eval walk, walk-to, getup

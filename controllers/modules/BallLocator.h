@@ -39,6 +39,8 @@ void describe(V& v, BallFilter::Params& p) {
   v("rollingSelectSpeed", p.rollingSelectSpeed, 0.0, 20.0);
   v("rollingSpeedSigmas", p.rollingSpeedSigmas, 0.0, 100.0);
   v("stopSpeed", p.stopSpeed, 0.0, 5.0);
+  v("confirmPercepts", p.confirmPercepts, 1, 100);
+  v("confirmWindow", p.confirmWindow, 0.0, 60.0);
   v("hypothesisTimeout", p.hypothesisTimeout, 0.01, 600.0);
   v("selectionWindow", p.selectionWindow, 0.0, 60.0);
   v("lostAfterFrames", p.lostAfterFrames, 1, 10000);

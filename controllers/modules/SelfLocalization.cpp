@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "controllers/modules/ModuleField.h"
+#include "perception/modeling/ViewRegion.h"
 #include "robot/ModuleRegistry.h"
 
 namespace nao::modules {
@@ -74,6 +75,10 @@ void SelfLocalization::update() {
   field.time = percepts.timestamp;
   field.lines = percepts.linesPercept();
   field.uncertainty = percepts.camera == CameraId::Top ? params_.top : params_.bottom;
+  if (percepts.processed)
+    field.view = groundView(percepts.cameraMatrix,
+                            percepts.camera == CameraId::Top ? params_.viewDistanceTop : params_.viewDistanceBottom,
+                            params_.viewMargin);
   locator_.applyPercepts(field, turnRate(in<FrameHistory>(), percepts.timestamp));
   pose = locator_.estimate();
   // The time and odometry the estimate belongs to (the last good reading's, if this one was not).
@@ -81,11 +86,16 @@ void SelfLocalization::update() {
   pose.odometry = lastOdometry_;
   debug(kLocalization, [&] {
     nlohmann::json hyps = nlohmann::json::array();
-    for (const auto& h : locator_.hypotheses())
+    for (const auto& h : locator_.hypotheses()) {
+      double arc = 0;
+      const double expected = locator_.expectedLineLength(h.mean, field.view, &arc);
       hyps.push_back({{"mean", {h.mean.x(), h.mean.y(), h.mean.z()}},
                       {"sigma", {std::sqrt(h.cov(0, 0)), std::sqrt(h.cov(1, 1)), std::sqrt(h.cov(2, 2))}},
                       {"score", h.score},
-                      {"age", h.age}});
+                      {"age", h.age},
+                      {"expected_line_m", expected},
+                      {"expected_arc_m", arc}});
+    }
     const auto& st = locator_.stats();
     return nlohmann::json{{"camera", cameraName(percepts.camera)},
                           {"pose", {pose.pose.x, pose.pose.y, pose.pose.theta}},
@@ -94,9 +104,11 @@ void SelfLocalization::update() {
                           {"sigma_m", pose.sigmaTranslation()},
                           {"hypotheses", hyps},
                           {"lines", percepts.lines.size()},
+                          {"circle", percepts.circle.found},
+                          {"view", field.view.size()},
                           {"stats", {{"skipped_odometry", st.skippedOdometry}, {"skipped_percepts", st.skippedPercepts},
                                      {"candidates", st.candidates}, {"resets", st.resets},
-                                     {"reinitialisations", st.reinitialisations}}}};
+                                     {"reinitialisations", st.reinitialisations}, {"negative_images", st.negativeImages}}}};
   });
 }
 

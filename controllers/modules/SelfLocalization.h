@@ -45,6 +45,10 @@ void describe(V& v, SelfLocator::Params& p) {
   v("penaltyMarkGate", p.penaltyMarkGate, 0.01, 5.0);
   v("chi2Gate", p.chi2Gate, 0.1, 1000.0);
   v("maxPerceptDistance", p.maxPerceptDistance, 0.5, 20.0);
+  v("negativeMinExpected", p.negativeMinExpected, 0.0, 100.0);
+  v("negativeDetectRate", p.negativeDetectRate, 0.0, 1.0);
+  v("negativeMinArc", p.negativeMinArc, 0.0, 10.0);
+  v("negativeMissedCircle", p.negativeMissedCircle, 0.0, 1.0);
   v("maxHypotheses", p.maxHypotheses, 1, 100);
   v("scoreRate", p.scoreRate, 0.001, 1.0);
   v("mergeDistance", p.mergeDistance, 0.0, 5.0);
@@ -90,6 +94,11 @@ class SelfLocalization
     PerceptUncertainty top{0.03, 0.04, 0.04, 0.01};     // the top camera's percepts
     PerceptUncertainty bottom{0.02, 0.03, 0.03, 0.01};  // the bottom camera's: closer, sharper
     double maxImageGap = 1.0;  // s: images farther apart than this are taken as a restart
+    // The ground each camera surely shows lines on (negative information, ViewRegion.h): the
+    // image less this margin, to this distance.
+    double viewMargin = 0.1;            // of the image's width and height, each side
+    double viewDistanceTop = 3.0;       // m
+    double viewDistanceBottom = 2.0;    // m
   };
 
   // The field: context.params["FieldDimensions"] (the run's field file), else
@@ -121,6 +130,9 @@ void describe(V& v, modules::SelfLocalization::Params& p) {
   v("top", p.top);
   v("bottom", p.bottom);
   v("maxImageGap", p.maxImageGap, 0.01, 60.0);
+  v("viewMargin", p.viewMargin, 0.0, 0.45);
+  v("viewDistanceTop", p.viewDistanceTop, 0.0, 20.0);
+  v("viewDistanceBottom", p.viewDistanceBottom, 0.0, 20.0);
 }
 
 }  // namespace nao

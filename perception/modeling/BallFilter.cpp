@@ -147,10 +147,19 @@ void BallFilter::spawn(const Vec2& z, const Mat2& R, bool rolling, double time) 
     const double s = params_.initialVelocitySigma;
     h.P(2, 2) = h.P(3, 3) = s * s;
   }
-  h.measurements = 1;
-  h.lastSeen = time;
+  h.measurements = 0;
+  hit(h, time);
   h.id = nextId_++;
   hyps_.push_back(h);
+}
+
+void BallFilter::hit(Hypothesis& h, double time) const {
+  ++h.measurements;
+  h.lastSeen = time;
+  h.hits.push_back(time);
+  const std::size_t n = static_cast<std::size_t>(params_.confirmPercepts);
+  if (h.hits.size() > n) h.hits.erase(h.hits.begin());
+  if (h.hits.size() == n && h.hits.back() - h.hits.front() <= params_.confirmWindow) h.confirmed = true;
 }
 
 bool BallFilter::observe(const BallObservation& o, double time) {
@@ -195,8 +204,7 @@ bool BallFilter::observe(const BallObservation& o, double time) {
       if (!x.allFinite() || !sane(P)) continue;
       h.x = x;
       h.P = 0.5 * (P + P.transpose());
-      ++h.measurements;
-      h.lastSeen = time;
+      hit(h, time);
       h.nis += params_.nisRate * (std::min(d2, 50.0) - h.nis);
     }
     if (bestD2 > (rolling ? params_.spawnChi2 : params_.chi2Gate)) spawn(z, R, rolling, time);
@@ -214,22 +222,40 @@ void BallFilter::prune(double time) {
       if (same) {
         if (b.measurements > a.measurements) std::swap(hyps_[i], hyps_[j]);
         hyps_[i].lastSeen = std::max(hyps_[i].lastSeen, hyps_[j].lastSeen);
+        hyps_[i].confirmed = hyps_[i].confirmed || hyps_[j].confirmed;
         hyps_.erase(hyps_.begin() + static_cast<std::ptrdiff_t>(j));
       } else {
         ++j;
       }
     }
-  // Forget stale ones, but keep the newest of all as the memory of the ball.
+  // A rolling hypothesis unseen for hypothesisTimeout has stopped by now (or never rolled): it
+  // lies at its end position (its open velocity would otherwise let it take any percept).
+  for (auto& h : hyps_)
+    if (h.rolling && time - h.lastSeen > params_.hypothesisTimeout) {
+      h.rolling = false;
+      h.x.head<2>() = endPosition(h.x.head<2>(), h.x.tail<2>(), params_.friction);
+      h.x.tail<2>().setZero();
+      const Mat2 position = h.P.topLeftCorner<2, 2>();
+      h.P.setZero();
+      h.P.topLeftCorner<2, 2>() = position;
+    }
+  // Forget stale ones, but keep the newest confirmed one as the memory of the ball (an
+  // unconfirmed one is forgotten when stale: it never was the ball).
+  auto confirmed = [](const Hypothesis& h) { return h.confirmed; };
   double newest = -kInf;
-  for (const auto& h : hyps_) newest = std::max(newest, h.lastSeen);
+  for (const auto& h : hyps_)
+    if (confirmed(h)) newest = std::max(newest, h.lastSeen);
   hyps_.erase(std::remove_if(hyps_.begin(), hyps_.end(),
                              [&](const Hypothesis& h) {
                                return !h.x.allFinite() || !sane(h.P) ||
-                                      (time - h.lastSeen > params_.hypothesisTimeout && h.lastSeen < newest);
+                                      (time - h.lastSeen > params_.hypothesisTimeout &&
+                                       (!confirmed(h) || h.lastSeen < newest));
                              }),
               hyps_.end());
-  // At most maxHypothesesPerBank per bank: the most recently seen, then the most measured.
+  // At most maxHypothesesPerBank per bank: the confirmed ones, then the most recently seen, then
+  // the most measured (a burst of false percepts does not push the ball out).
   std::stable_sort(hyps_.begin(), hyps_.end(), [](const Hypothesis& a, const Hypothesis& b) {
+    if (a.confirmed != b.confirmed) return a.confirmed;
     if (a.lastSeen != b.lastSeen) return a.lastSeen > b.lastSeen;
     return a.measurements > b.measurements;
   });
@@ -247,8 +273,10 @@ void BallFilter::select(const BallInput& input) {
   // measured (one percept outside the gate does not move the model). The rolling ball: of the
   // rolling ones seen in that window with enough measurements and a speed clearly above zero,
   // the most measured; it is selected when the lying one no longer explains the percepts.
+  auto confirmed = [](const Hypothesis& h) { return h.confirmed; };
   double newest = -std::numeric_limits<double>::infinity();
-  for (const auto& h : hyps_) newest = std::max(newest, h.lastSeen);
+  for (const auto& h : hyps_)
+    if (confirmed(h)) newest = std::max(newest, h.lastSeen);
   const double since = newest - params_.selectionWindow;
   auto better = [](const Hypothesis* a, const Hypothesis& h) {
     return !a || h.measurements > a->measurements || (h.measurements == a->measurements && h.lastSeen > a->lastSeen);
@@ -264,7 +292,7 @@ void BallFilter::select(const BallInput& input) {
   const Hypothesis* st = nullptr;
   const Hypothesis* ro = nullptr;
   for (const auto& h : hyps_) {
-    if (h.lastSeen < since) continue;
+    if (h.lastSeen < since || !confirmed(h)) continue;
     if (!h.rolling && better(st, h)) st = &h;
     if (h.rolling && h.measurements >= params_.rollingMinMeasurements && moving(h) && better(ro, h)) ro = &h;
   }
@@ -275,13 +303,18 @@ void BallFilter::select(const BallInput& input) {
                               (!ro || st->measurements >= ro->measurements);
   const bool useRolling = ro != nullptr && !stationaryFits;
   const Hypothesis* sel = useRolling ? ro : st;
-  if (!sel && !hyps_.empty()) sel = &hyps_.front();
+  if (!sel)  // the memory: the most recently seen confirmed hypothesis (a rolling one with its measurements)
+    for (const auto& h : hyps_)
+      if (confirmed(h) && (!h.rolling || h.measurements >= params_.rollingMinMeasurements) &&
+          (!sel || h.lastSeen > sel->lastSeen))
+        sel = &h;
   if (!sel) {
     model_.valid = false;
     model_.fieldValid = false;
     return;
   }
   model_.valid = true;
+  model_.seenTime = sel->lastSeen;
   model_.rolling = sel->rolling && useRolling;
   model_.position = sel->x.head<2>();
   model_.velocity = model_.rolling ? Vec2(sel->x.tail<2>()) : Vec2::Zero();
@@ -314,18 +347,19 @@ BallModel BallFilter::update(const BallInput& input) {
   }
   applyOdometry(input.odometryDelta);
   predict(dt);
-  bool seen = false;
-  for (const auto& o : input.observations) seen = observe(o, time) || seen;
+  for (const auto& o : input.observations) observe(o, time);
   prune(time);
-  if (seen) {
-    model_.seenTime = time;
+  const bool wasValid = model_.valid;
+  select(input);
+  // Seen: a percept fitted the hypothesis that is the ball (not merely any percept: a false
+  // one elsewhere neither refreshes the ball nor keeps it from being lost).
+  if (model_.valid && model_.seenTime >= time) {
     model_.unseenFrames = 0;
     model_.lost = false;
-  } else if (input.ballExpectedInView && model_.valid) {
+  } else if (input.ballExpectedInView && wasValid) {
     ++model_.unseenFrames;
     if (model_.unseenFrames >= params_.lostAfterFrames) model_.lost = true;
   }
-  select(input);
   return model_;
 }
 

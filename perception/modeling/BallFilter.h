@@ -3,7 +3,7 @@
 // hypotheses estimate a 2-D position; rolling ones position and velocity (4-D) under a
 // constant deceleration (the carpet's friction, a parameter to fit to the ball at hand). Each
 // percept updates the best-fitting hypothesis of each bank inside a chi-square gate, or starts a
-// new one. The rolling hypothesis is selected once it has enough measurements and a speed
+// new one. Only a hypothesis confirmed by several percepts can be the ball. The rolling hypothesis is selected once it has enough measurements and a speed
 // clearly above zero; otherwise the stationary one. The ball is "lost" after a number of
 // consecutive cycles in which the caller says it should have been seen and no percept fitted.
 // docs/modeling.md.
@@ -41,7 +41,10 @@ class BallFilter {
     double rollingSelectSpeed = 0.2;       // m/s, and faster than this ...
     double rollingSpeedSigmas = 3.5;       // ... and this many standard deviations of its speed
     double stopSpeed = 0.08;               // m/s: a slower rolling ball counts as lying
-    double hypothesisTimeout = 2.0;        // s without a fitting percept before a hypothesis goes
+    int confirmPercepts = 3;               // fitting percepts within confirmWindow before a hypothesis
+    double confirmWindow = 0.5;            // s can be the ball (a false percept now and then never is)
+    double hypothesisTimeout = 2.0;        // s without a fitting percept before a hypothesis goes (a
+                                           // rolling one becomes a lying one at its end position)
     double selectionWindow = 0.25;         // s: of the hypotheses seen this recently, the most measured is selected
     int lostAfterFrames = 7;               // consecutive cycles unseen while expected in view
     double maxDt = 1.0;                    // s: a longer gap between cycles is taken as this
@@ -56,6 +59,8 @@ class BallFilter {
     int measurements = 0;
     double lastSeen = 0;  // s
     double nis = 2;       // running mean of the normalised innovation squared (2 when it fits)
+    std::vector<double> hits;  // times of its last confirmPercepts fitting percepts
+    bool confirmed = false;    // once confirmPercepts of them came within confirmWindow
     std::uint64_t id = 0;
   };
 
@@ -93,6 +98,7 @@ class BallFilter {
   bool observe(const BallObservation& o, double time);
   void spawn(const Eigen::Vector2d& z, const Eigen::Matrix2d& R, bool rolling, double time);
   void prune(double time);
+  void hit(Hypothesis& h, double time) const;
   void select(const BallInput& input);
 
   Params params_;

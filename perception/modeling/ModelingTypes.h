@@ -32,6 +32,10 @@ struct FieldPercepts {
   double time = 0;  // s, the image's timestamp
   LinesPercept lines;
   PerceptUncertainty uncertainty;
+  // The ground this image surely shows (perception/modeling/ViewRegion.h: convex, counter-
+  // clockwise, robot frame): field lines predicted inside it and not seen count against a
+  // hypothesis. Empty: no such negative information (an unprocessed image, a test).
+  std::vector<Eigen::Vector2d> view;
 };
 
 // Everything the self-localization takes in one cognition cycle.

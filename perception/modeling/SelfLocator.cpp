@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include "perception/Geometry.h"
+#include "perception/modeling/ViewRegion.h"
 
 namespace nao {
 namespace modeling_detail {
@@ -302,6 +303,14 @@ SelfLocator::SelfLocator(const FieldModel& field, const Params& params) : field_
     }
     corners_.push_back(c);
   }
+  constexpr int kChords = 32;
+  for (int i = 0; i < kChords; ++i) {
+    auto at = [&](int k) {
+      const double a = 2 * kPi * k / kChords;
+      return Vec2(field_.centerCircleCenter + field_.centerCircleRadius * Vec2(std::cos(a), std::sin(a)));
+    };
+    circleChords_.emplace_back(at(i), at(i + 1));
+  }
   resetToSidelineEntry(true);
 }
 
@@ -386,15 +395,31 @@ bool SelfLocator::applyOdometry(const Pose2& d) {
   return true;
 }
 
-void SelfLocator::updateHypothesis(Hypothesis& h, const Elements& els, double& fit, int& used) const {
+double SelfLocator::expectedLineLength(const Eigen::Vector3d& pose, const std::vector<Eigen::Vector2d>& view,
+                                       double* circle) const {
+  if (view.size() < 3) return 0;
+  const PoseFrame frame(pose);
+  double sum = 0, arc = 0;
+  for (const auto& l : field_.lines) sum += lengthInside(frame.toRobot(l.from), frame.toRobot(l.to), view);
+  for (const auto& [a, b] : circleChords_) arc += lengthInside(frame.toRobot(a), frame.toRobot(b), view);
+  if (circle) *circle = arc;
+  return sum + arc;
+}
+
+bool SelfLocator::updateHypothesis(Hypothesis& h, const Elements& els, double& fit, int& used,
+                                   double& matchedLength) const {
   const Associator as(field_, params_);
+  bool circleFits = false;
   double sum = 0;
   used = 0;
+  matchedLength = 0;
   const double maxVar = 4 * field_.dims.length * field_.dims.length;
   for (const auto& e : els) {
     ++used;
     Associator::Match m;
     if (!as.associate(e, h.mean, h.cov, m)) continue;
+    if (e.kind == Element::Kind::Line) matchedLength += e.length;
+    circleFits = circleFits || e.kind == Element::Kind::Circle;
     const Mat2 R = as.noise(e);
     // Fit: 1 inside the percept's own 2-sigma ellipse (86 % of right associations), fading out beyond.
     const double q = m.r.dot(R.ldlt().solve(m.r));
@@ -410,6 +435,7 @@ void SelfLocator::updateHypothesis(Hypothesis& h, const Elements& els, double& f
     h.cov = sanitised(cov, maxVar);
   }
   fit = used > 0 ? sum / used : 0;
+  return circleFits;
 }
 
 // A candidate is verified when at least candidateMinSupport of the image's percepts (and
@@ -646,10 +672,26 @@ void SelfLocator::applyPercepts(const FieldPercepts& percepts, double gyroZ) {
   stats_.skippedPercepts += skipped;
   time_ = std::max(time_, percepts.time);
   for (auto& h : hyps_) {
-    double fit = 0;
+    // What this hypothesis says the image should show, before the image moves it.
+    double arc = 0;
+    const double expected = expectedLineLength(h.mean, percepts.view, &arc);
+    double fit = 0, matched = 0;
     int used = 0;
-    updateHypothesis(h, els, fit, used);
+    const bool circleFits = updateHypothesis(h, els, fit, used, matched);
     ++h.age;
+    // Straight lines by their length; the centre circle (its arcs are not matched as straight
+    // lines) as a whole: much of its arc in view and no circle that fits, and the image fits
+    // no better than negativeMissedCircle.
+    double seen = 1;
+    const double straight = expected - arc;
+    if (straight >= params_.negativeMinExpected)
+      seen = std::clamp(matched / (params_.negativeDetectRate * straight), 0.0, 1.0);
+    if (arc >= params_.negativeMinArc && !circleFits) seen = std::min(seen, params_.negativeMissedCircle);
+    if (seen < 1) {
+      ++stats_.negativeImages;
+      fit = (used > 0 ? fit : 1.0) * seen;
+      used = std::max(used, 1);
+    }
     if (used > 0) h.score += params_.scoreRate * (fit - h.score);
   }
   hyps_.erase(std::remove_if(hyps_.begin(), hyps_.end(), [](const Hypothesis& h) { return !finite(h); }),

@@ -5,7 +5,9 @@
 //
 // Per cycle: `update(input)` applies the odometry step (process noise growing with distance
 // and turn), then the percepts of each camera image: field lines (perpendicular distance and
-// angle), intersections by type (L/T/X), the centre circle, the penalty marks. Feature
+// angle), intersections by type (L/T/X), the centre circle, the penalty marks; a hypothesis that
+// puts field lines where the image surely showed ground and none was seen fits it less
+// (negative information, FieldPercepts::view). Feature
 // combinations (centre circle + halfway line, penalty mark + penalty-area line, a typed corner
 // with its orientation) give candidate poses, verified against all percepts of the image,
 // clustered over time; a cluster seen often enough that no hypothesis explains becomes a new
@@ -13,6 +15,7 @@
 // the game situation (`resetTo...`), and a candidate is taken in whichever of its two mirror
 // images is closer to the current estimate.
 #include <cstdint>
+#include <utility>
 #include <limits>
 #include <vector>
 
@@ -51,6 +54,15 @@ class SelfLocator {
     double penaltyMarkGate = 0.75;     // m
     double chi2Gate = 13.8;            // Mahalanobis^2 gate, 2 dof (99.9 %)
     double maxPerceptDistance = 7.0;   // m: farther or non-finite percepts are skipped
+
+    // Negative information: a hypothesis that puts at least negativeMinExpected m of field line
+    // inside an image's view (FieldPercepts::view) fits that image only as far as the lines it
+    // matched there reach negativeDetectRate of that length (a fit of 0 for none). The rate
+    // allows for lines the vision misses (far, dark, smeared) and for occlusion.
+    double negativeMinExpected = 1.0;  // m of field line in view
+    double negativeDetectRate = 0.35;  // share of it that a right hypothesis sees matched
+    double negativeMinArc = 1.5;       // m of the centre circle's arc in view: ...
+    double negativeMissedCircle = 0.3; // ... the image's fit when no circle fits
 
     // Hypotheses.
     int maxHypotheses = 12;
@@ -116,6 +128,7 @@ class SelfLocator {
     int resets = 0;              // hypotheses added by sensor resetting
     int reinitialisations = 0;   // the filter lost all hypotheses and started again
     int priorViolations = 0;     // hypotheses dropped for leaving the game situation's half
+    long negativeImages = 0;     // hypothesis-images whose fit negative information lowered
   };
 
   explicit SelfLocator(const FieldModel& field) : SelfLocator(field, Params()) {}
@@ -144,6 +157,10 @@ class SelfLocator {
   // Candidate poses from the feature combinations in one percept set, each verified against
   // the set's other percepts. Each is one of its two mirror images (the caller picks).
   std::vector<Pose2> featureCandidates(const FieldPercepts& percepts) const;
+  // The length (m) of field line (straight lines and the centre circle's arc) a robot at `pose`
+  // would have inside the view polygon (robot frame); `circle`: the arc's part of it.
+  double expectedLineLength(const Eigen::Vector3d& pose, const std::vector<Eigen::Vector2d>& view,
+                            double* circle = nullptr) const;
   // (x, y, theta) -> (-x, -y, theta + pi): the field's point symmetry.
   static Pose2 mirror(const Pose2& p);
 
@@ -162,7 +179,8 @@ class SelfLocator {
   void startOver(const std::vector<Eigen::Vector3d>& means, const Eigen::Vector3d& sigmas, double xMin, double xMax);
   void addHypothesis(const Eigen::Vector3d& mean, const Eigen::Matrix3d& cov, double score);
   using Elements = std::vector<modeling_detail::Element>;
-  void updateHypothesis(Hypothesis& h, const Elements& els, double& fit, int& used) const;
+  // The EKF update by the image's elements; true when the centre circle was among those it matched.
+  bool updateHypothesis(Hypothesis& h, const Elements& els, double& fit, int& used, double& matchedLength) const;
   bool supports(const Eigen::Vector3d& pose, const Elements& els) const;
   std::vector<Pose2> candidatesFrom(const FieldPercepts& percepts, const Elements& els) const;
   void addCandidate(const Pose2& candidate, double time);
@@ -175,6 +193,7 @@ class SelfLocator {
   std::vector<Hypothesis> hyps_;
   std::vector<Cluster> clusters_;
   std::vector<ModelCorner> corners_;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> circleChords_;  // the centre circle as a polygon
   std::uint64_t nextId_ = 1;
   std::uint64_t selectedId_ = 0;
   Eigen::Vector3d lastGood_ = Eigen::Vector3d::Zero();
