@@ -287,6 +287,7 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
   nlohmann::json row = {{"seed", seed}, {"kind", kindName(kind)}, {"lighting", lighting.name},
                         {"settings", localizationEvalSettings(o)}, {"robot", robotJson}};
   row["legs"] = {{"given", legsGiven}, {"reached", legsReached}};
+  row["start"] = {rounded(start.x(), 1e3), rounded(start.y(), 1e3), rounded(start.z() / kDeg, 1e1)};
 
   if (kind == LocalizationTrialKind::Kidnap) {
     // The referee lifts the standing robot and sets it down elsewhere; nobody tells the filter.

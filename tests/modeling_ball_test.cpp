@@ -212,8 +212,18 @@ TEST(BallFilter, LostAfterNFramesExpectedButUnseen) {
   for (int i = 0; i < 20; ++i) cycle(true, true);
   ASSERT_FALSE(f.model().lost);
   const double seen = f.model().seenTime;
-  // Not in view: never lost, however long.
+  // Not in view: not lost until lostAfterSeconds have passed unseen.
   for (int i = 0; i < 100; ++i) EXPECT_FALSE(cycle(false, false).lost);
+  {
+    BallFilter g;
+    double tg = 0;
+    for (int i = 0; i < 10; ++i, tg += kDt) g.update({tg, {}, {observe(truth, rng)}, true, {}});
+    const double lastSeen = g.model().seenTime;
+    for (; tg - lastSeen < g.params().lostAfterSeconds - 0.05; tg += kDt) ASSERT_FALSE(g.update({tg, {}, {}, false, {}}).lost);
+    for (; tg - lastSeen < g.params().lostAfterSeconds + 0.05; tg += kDt) g.update({tg, {}, {}, false, {}});
+    EXPECT_TRUE(g.model().lost);
+    EXPECT_TRUE(g.model().valid);  // still the last known position
+  }
   // In view but unseen: lost at exactly the n-th frame.
   for (int i = 1; i <= n; ++i) {
     const BallModel m = cycle(false, true);

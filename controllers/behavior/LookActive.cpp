@@ -73,8 +73,11 @@ void LookActive::lookAt(const Eigen::Vector2d& field, const Pose2& pose, HeadMot
 
 void LookActive::run(const BehaviorInput& in, HeadMotionRequest& request) {
   const double t = in.time;
-  const bool ballKnown = in.ball.valid && !in.ball.lost && t - in.ball.seenTime < params_.ballRecent;
   const bool poseValid = in.pose.valid;
+  // A known ball is tracked; while the robot does not know where it is, only a near one (a far
+  // ball in the middle of the view would keep the head from the field features it needs).
+  const bool ballKnown = in.ball.valid && !in.ball.lost && t - in.ball.seenTime < params_.ballRecent &&
+                         (poseValid || in.ball.position.norm() < params_.ballNearWhileLost);
 
   if (ballKnown && poseValid && in.pose.sigmaTranslation() > params_.glanceSigma && t - lastGlance_ > params_.glanceEvery)
     machine_.go(State::Glance, t);

@@ -1,6 +1,6 @@
 #pragma once
 // Option: where the head looks. A known ball is tracked (with a glance at the field now and
-// then when the pose grows uncertain); otherwise the head looks at the field feature that would
+// then when the pose grows uncertain; while the pose is not valid, only a near ball); otherwise the head looks at the field feature that would
 // shrink the pose covariance most (an information-gain choice over the field's intersections,
 // centre circle, penalty marks and points along the lines, within the head's reach and the
 // cameras' useful range); with no valid pose it sweeps. Head speed is limited so that images
@@ -28,7 +28,8 @@ class LookActive {
     double sigmaBase = 0.03;          // m: a feature's measurement noise ...
     double sigmaPerMetre = 0.04;      // ... growing with the distance
     double lineSampleSpacing = 1.0;   // m between points sampled along each line
-    double ballRecent = 2.0;          // s: a ball seen this recently is tracked
+    double ballRecent = 2.0;          // s: a ball seen this recently is tracked ...
+    double ballNearWhileLost = 1.5;   // m: ... and, while the pose is not valid, only one this near
     double bottomCameraDistance = 1.2;  // m: nearer balls are looked at with the bottom camera
     double glanceSigma = 0.15;        // m: while tracking the ball, glance at the field above this ...
     double glanceEvery = 4.0;         // s ...
@@ -84,6 +85,7 @@ void describe(V& v, LookActive::Params& p) {
   v("sigmaPerMetre", p.sigmaPerMetre, 0.0, 1.0);
   v("lineSampleSpacing", p.lineSampleSpacing, 0.1, 10.0);
   v("ballRecent", p.ballRecent, 0.0, 60.0);
+  v("ballNearWhileLost", p.ballNearWhileLost, 0.0, 20.0);
   v("bottomCameraDistance", p.bottomCameraDistance, 0.0, 10.0);
   v("glanceSigma", p.glanceSigma, 0.0, 10.0);
   v("glanceEvery", p.glanceEvery, 0.1, 600.0);

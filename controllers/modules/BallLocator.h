@@ -44,6 +44,7 @@ void describe(V& v, BallFilter::Params& p) {
   v("hypothesisTimeout", p.hypothesisTimeout, 0.01, 600.0);
   v("selectionWindow", p.selectionWindow, 0.0, 60.0);
   v("lostAfterFrames", p.lostAfterFrames, 1, 10000);
+  v("lostAfterSeconds", p.lostAfterSeconds, 0.1, 3600.0);
   v("maxDt", p.maxDt, 0.01, 60.0);
   v("maxOdometryStep", p.maxOdometryStep, 0.01, 5.0);
   v("maxOdometryTurn", p.maxOdometryTurn, 0.01, 6.3);

@@ -75,6 +75,7 @@ void describe(V& v, SelfLocator::Params& p) {
   v("situationPriorMargin", p.situationPriorMargin, 0.0, 5.0);
   v("situationMirrorDistance", p.situationMirrorDistance, 0.0, 20.0);
   v("situationMirrorAngle", p.situationMirrorAngle, 0.0, 3.2);
+  v("offFieldMargin", p.offFieldMargin, 0.0, 10.0);
   v("sidelineSigmaX", p.sidelineSigma[0], 0.001, 10.0);
   v("sidelineSigmaY", p.sidelineSigma[1], 0.001, 10.0);
   v("sidelineSigmaTheta", p.sidelineSigma[2], 0.001, 3.2);

@@ -360,6 +360,7 @@ BallModel BallFilter::update(const BallInput& input) {
     ++model_.unseenFrames;
     if (model_.unseenFrames >= params_.lostAfterFrames) model_.lost = true;
   }
+  if (model_.valid && time - model_.seenTime > params_.lostAfterSeconds) model_.lost = true;
   return model_;
 }
 

@@ -5,7 +5,8 @@
 // percept updates the best-fitting hypothesis of each bank inside a chi-square gate, or starts a
 // new one. Only a hypothesis confirmed by several percepts can be the ball. The rolling hypothesis is selected once it has enough measurements and a speed
 // clearly above zero; otherwise the stationary one. The ball is "lost" after a number of
-// consecutive cycles in which the caller says it should have been seen and no percept fitted.
+// consecutive cycles in which the caller says it should have been seen and no percept fitted,
+// or after some seconds unseen.
 // docs/modeling.md.
 #include <cstdint>
 #include <vector>
@@ -46,7 +47,9 @@ class BallFilter {
     double hypothesisTimeout = 2.0;        // s without a fitting percept before a hypothesis goes (a
                                            // rolling one becomes a lying one at its end position)
     double selectionWindow = 0.25;         // s: of the hypotheses seen this recently, the most measured is selected
-    int lostAfterFrames = 7;               // consecutive cycles unseen while expected in view
+    int lostAfterFrames = 7;               // consecutive cycles unseen while expected in view ...
+    double lostAfterSeconds = 8.0;         // s ... or this long unseen wherever it was (a memory never
+                                           // looked at again is no longer claimed)
     double maxDt = 1.0;                    // s: a longer gap between cycles is taken as this
     double maxOdometryStep = 0.5;          // m: a larger step is absurd and skipped
     double maxOdometryTurn = 1.0;          // rad

@@ -704,6 +704,12 @@ void SelfLocator::applyPercepts(const FieldPercepts& percepts, double gyroZ) {
                              }),
               hyps_.end());
   stats_.priorViolations += static_cast<int>(before - hyps_.size());
+  const std::size_t onField = hyps_.size();
+  const double xLimit = field_.halfLength() + params_.offFieldMargin, yLimit = field_.halfWidth() + params_.offFieldMargin;
+  hyps_.erase(std::remove_if(hyps_.begin(), hyps_.end(),
+                             [&](const Hypothesis& h) { return std::abs(h.mean.x()) > xLimit || std::abs(h.mean.y()) > yLimit; }),
+              hyps_.end());
+  stats_.offField += static_cast<int>(onField - hyps_.size());
   reinitialiseIfEmpty();
 
   // Sensor resetting.

@@ -103,6 +103,10 @@ class SelfLocator {
     double situationMirrorDistance = 1.5;  // m
     double situationMirrorAngle = 0.6;     // rad
 
+    // A hypothesis farther than this outside the field lines is dropped: no robot stands there
+    // (the carpet's border is 0.7 m), and one that slid there fits what little it would see.
+    double offFieldMargin = 0.7;       // m
+
     // Initial spreads (sigma x m, y m, theta rad).
     Eigen::Vector3d sidelineSigma{0.75, 0.15, 0.3};
     Eigen::Vector3d penaltyReturnSigma{0.5, 0.2, 0.3};
@@ -128,6 +132,7 @@ class SelfLocator {
     int resets = 0;              // hypotheses added by sensor resetting
     int reinitialisations = 0;   // the filter lost all hypotheses and started again
     int priorViolations = 0;     // hypotheses dropped for leaving the game situation's half
+    int offField = 0;            // hypotheses dropped for leaving the field and its border
     long negativeImages = 0;     // hypothesis-images whose fit negative information lowered
   };
 
