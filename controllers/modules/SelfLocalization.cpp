@@ -108,7 +108,9 @@ void SelfLocalization::update() {
                           {"view", field.view.size()},
                           {"stats", {{"skipped_odometry", st.skippedOdometry}, {"skipped_percepts", st.skippedPercepts},
                                      {"candidates", st.candidates}, {"resets", st.resets},
-                                     {"reinitialisations", st.reinitialisations}, {"negative_images", st.negativeImages}, {"off_field", st.offField}, {"prior_violations", st.priorViolations}}}};
+                                     {"reinitialisations", st.reinitialisations},
+                                     {"negative_images", st.negativeImages}, {"off_field", st.offField},
+                                     {"prior_violations", st.priorViolations}}}};
   });
 }
 

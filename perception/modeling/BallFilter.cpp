@@ -241,15 +241,14 @@ void BallFilter::prune(double time) {
     }
   // Forget stale ones, but keep the newest confirmed one as the memory of the ball (an
   // unconfirmed one is forgotten when stale: it never was the ball).
-  auto confirmed = [](const Hypothesis& h) { return h.confirmed; };
   double newest = -kInf;
   for (const auto& h : hyps_)
-    if (confirmed(h)) newest = std::max(newest, h.lastSeen);
+    if (h.confirmed) newest = std::max(newest, h.lastSeen);
   hyps_.erase(std::remove_if(hyps_.begin(), hyps_.end(),
                              [&](const Hypothesis& h) {
                                return !h.x.allFinite() || !sane(h.P) ||
                                       (time - h.lastSeen > params_.hypothesisTimeout &&
-                                       (!confirmed(h) || h.lastSeen < newest));
+                                       (!h.confirmed || h.lastSeen < newest));
                              }),
               hyps_.end());
   // At most maxHypothesesPerBank per bank: the confirmed ones, then the most recently seen, then
@@ -273,10 +272,9 @@ void BallFilter::select(const BallInput& input) {
   // measured (one percept outside the gate does not move the model). The rolling ball: of the
   // rolling ones seen in that window with enough measurements and a speed clearly above zero,
   // the most measured; it is selected when the lying one no longer explains the percepts.
-  auto confirmed = [](const Hypothesis& h) { return h.confirmed; };
   double newest = -std::numeric_limits<double>::infinity();
   for (const auto& h : hyps_)
-    if (confirmed(h)) newest = std::max(newest, h.lastSeen);
+    if (h.confirmed) newest = std::max(newest, h.lastSeen);
   const double since = newest - params_.selectionWindow;
   auto better = [](const Hypothesis* a, const Hypothesis& h) {
     return !a || h.measurements > a->measurements || (h.measurements == a->measurements && h.lastSeen > a->lastSeen);
@@ -292,7 +290,7 @@ void BallFilter::select(const BallInput& input) {
   const Hypothesis* st = nullptr;
   const Hypothesis* ro = nullptr;
   for (const auto& h : hyps_) {
-    if (h.lastSeen < since || !confirmed(h)) continue;
+    if (h.lastSeen < since || !h.confirmed) continue;
     if (!h.rolling && better(st, h)) st = &h;
     if (h.rolling && h.measurements >= params_.rollingMinMeasurements && moving(h) && better(ro, h)) ro = &h;
   }
@@ -305,7 +303,7 @@ void BallFilter::select(const BallInput& input) {
   const Hypothesis* sel = useRolling ? ro : st;
   if (!sel)  // the memory: the most recently seen confirmed hypothesis (a rolling one with its measurements)
     for (const auto& h : hyps_)
-      if (confirmed(h) && (!h.rolling || h.measurements >= params_.rollingMinMeasurements) &&
+      if (h.confirmed && (!h.rolling || h.measurements >= params_.rollingMinMeasurements) &&
           (!sel || h.lastSeen > sel->lastSeen))
         sel = &h;
   if (!sel) {

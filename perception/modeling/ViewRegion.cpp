@@ -33,6 +33,11 @@ std::vector<Eigen::Vector2d> groundView(const CameraMatrix& camera, double maxDi
   const double w = camera.intrinsics.width, h = camera.intrinsics.height;
   const double x0 = margin * w, x1 = (1 - margin) * w, y0 = margin * h, y1 = (1 - margin) * h;
   if (!(maxDistance > 0) || !(x1 > x0) || !(y1 > y0)) return {};
+  // An image entirely above the horizon sees no ground at all.
+  bool seesGround = false;
+  for (double py : {y0, y1})
+    for (double px : {x0, x1}) seesGround = seesGround || camera.pixelToGround({px, py}).has_value();
+  if (!seesGround) return {};
   const Eigen::Vector2d eye = camera.pose.translation().head<2>();
   std::vector<Eigen::Vector2d> points;
   // Along the image's border: where each pixel's ray meets the ground, or (at or above the
@@ -64,11 +69,6 @@ std::vector<Eigen::Vector2d> groundView(const CameraMatrix& camera, double maxDi
     add(x1 - f * (x1 - x0), y1);
     add(x0, y1 - f * (y1 - y0));
   }
-  // An image entirely above the horizon sees no ground at all.
-  bool seesGround = false;
-  for (double py : {y0, y1})
-    for (double px : {x0, x1}) seesGround = seesGround || camera.pixelToGround({px, py}).has_value();
-  if (!seesGround) return {};
   return hull(std::move(points));
 }
 
