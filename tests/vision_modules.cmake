@@ -5,3 +5,6 @@ nao_add_test(vision_modules_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/vision/vision
              LIBS nao_perception nao_sim nao_controllers TIMEOUT 300)
 nao_add_test(camera_pipeline_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/vision/camera_pipeline_test.cpp
              LIBS nao_perception nao_sim nao_controllers TIMEOUT 600)
+# The robot's own body (perception/OwnBody.h) against the simulator's rays, and balls beside it.
+nao_add_test(own_body_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/vision/own_body_test.cpp
+             LIBS nao_perception nao_sim nao_controllers TIMEOUT 300)

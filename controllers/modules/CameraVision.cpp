@@ -53,7 +53,7 @@ void CameraVision::update() {
     out.timestamp = image.timestamp;
     return;
   }
-  out = pipelines_[static_cast<int>(image.camera)]->process(image, m.matrix);
+  out = pipelines_[static_cast<int>(image.camera)]->process(image, m.matrix, in<OwnBody>());
 }
 
 NAO_REGISTER_MODULE(CameraVision);

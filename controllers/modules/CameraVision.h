@@ -1,11 +1,13 @@
 #pragma once
 // Cognition: the current image through its camera's vision (perception/vision/CameraPipeline.h:
 // the same modules for both cameras, each camera with its own pipeline and blackboard, as
-// B-Human's Upper and Lower threads), with the camera matrix at the image's exposure time.
+// B-Human's Upper and Lower threads), with the camera matrix and the robot's own body at the
+// image's exposure time.
 // Publishes the image's CameraPercepts for modeling and behaviour.
 #include <array>
 #include <memory>
 
+#include "perception/OwnBody.h"
 #include "perception/vision/CameraPipeline.h"
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/perception/CameraPercepts.h"
@@ -16,7 +18,7 @@
 
 namespace nao::modules {
 
-class CameraVision : public Module<CameraVision, Requires<CurrentImage, ImageCameraMatrix>, Provides<CameraPercepts>,
+class CameraVision : public Module<CameraVision, Requires<CurrentImage, ImageCameraMatrix, OwnBody>, Provides<CameraPercepts>,
                                    Cadence::Cognition> {
  public:
   // The painted sizes: context.params["CameraVision"] (a VisionGeometry, e.g. from the run's

@@ -574,6 +574,10 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
       c.rejectedBy = "size";
       continue;
     }
+    if (params.ownBody && params.ownBody->hides(cm, circle.c)) {
+      c.rejectedBy = "own body";
+      continue;
+    }
     measured.push_back(circle);
     // 16 samples a ring; where the image border cuts the ball, denser rings over what is left.
     Inside in = measureInside<16>(image, field, onField, circle);

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "perception/CameraModel.h"
+#include "perception/OwnBody.h"
 #include "perception/vision/BallClassifier.h"
 #include "perception/vision/ColourTests.h"
 #include "perception/vision/VisionTypes.h"
@@ -84,6 +85,9 @@ struct BallParams {
   // robots it learned "not a ball" from are simpler shapes than a real NAO's legs.
   double learnedMaxFieldInside = 0.5;
   double learnedMinRadiusPx = 6;  // smaller, the patches are a pixel or two
+  // The robot's own body at the image's exposure (null: none): a circle centred on it is not
+  // a ball, however ball-like (a hand, a foot's rounded shell).
+  const OwnBody* ownBody = nullptr;
 };
 
 struct BallCandidate {

@@ -64,7 +64,7 @@ CameraPipeline::CameraPipeline(CameraId camera, const VisionGeometry& geometry, 
   context.debug = debug_ = config.debug;
   pipeline_.setDebug(config.debug, std::string("vision_") + cameraName(camera));
   board_.write<VisionGeometry>() = geometry_;
-  pipeline_.inputs<CameraImage, CameraMatrix, VisionGeometry>();
+  pipeline_.inputs<CameraImage, CameraMatrix, VisionGeometry, OwnBody>();
   for (const std::string& name : chosenModules(providers)) {
     std::unique_ptr<ModuleBase> module = createModule(name, context);
     if (module->cadence() != Cadence::Cognition)
@@ -76,7 +76,7 @@ CameraPipeline::CameraPipeline(CameraId camera, const VisionGeometry& geometry, 
   percepts_.camera = camera_;
 }
 
-const CameraPercepts& CameraPipeline::process(const CameraImage& image, const CameraMatrix& cm) {
+const CameraPercepts& CameraPipeline::process(const CameraImage& image, const CameraMatrix& cm, const OwnBody& body) {
   if (image.camera != camera_)
     throw Error("camera pipeline", std::string("an image of the ") + cameraName(image.camera) +
                                        " camera given to the " + cameraName(camera_) + " camera's pipeline");
@@ -94,6 +94,7 @@ const CameraPercepts& CameraPipeline::process(const CameraImage& image, const Ca
   if (debug_) debug_->setTime(image.timestamp);
   board_.write<CameraImage>() = image;
   board_.write<CameraMatrix>() = cm;
+  board_.write<OwnBody>() = body;
   Clock::time_point last = Clock::now();
   for (const auto& module : pipeline_.modules()) {
     module->execute(board_);

@@ -2,8 +2,8 @@
 // The vision of one camera as a pipeline of modules, run once per image (B-Human's Upper and
 // Lower threads, HULKs' Top and Bottom cyclers): the same modules for the top and the bottom
 // camera, each camera with its own instance, blackboard and pipeline. Inputs: the image, the
-// camera matrix at its exposure time and the painted sizes from the field file
-// (VisionGeometry); output: one CameraPercepts per image. Which module provides which
+// camera matrix and the robot's own body (OwnBody) at its exposure time and the painted sizes
+// from the field file (VisionGeometry); output: one CameraPercepts per image. Which module provides which
 // representation comes from config/camera_modules.json (a provider can be swapped there or
 // through CameraPipelineConfig::providers, e.g. an oracle); the order follows from the
 // modules' declarations.
@@ -19,6 +19,7 @@
 
 #include "perception/CameraModel.h"
 #include "perception/FieldDimensions.h"
+#include "perception/OwnBody.h"
 #include "perception/vision/VisionPipeline.h"
 #include "representations/perception/CameraPercepts.h"
 #include "representations/perception/VisionGeometry.h"
@@ -43,9 +44,9 @@ class CameraPipeline {
   CameraPipeline(CameraId camera, const VisionGeometry& geometry, const CameraPipelineConfig& config = {});
 
   // Runs every module on this image (taken with the camera matrix `cm`, calibrated, at its
-  // exposure time). An invalid image (no pixels) gives percepts with nothing seen. An image of
-  // the other camera is a nao::Error.
-  const CameraPercepts& process(const CameraImage& image, const CameraMatrix& cm);
+  // exposure time; `body`: the robot's own body then, none by default). An invalid image (no
+  // pixels) gives percepts with nothing seen. An image of the other camera is a nao::Error.
+  const CameraPercepts& process(const CameraImage& image, const CameraMatrix& cm, const OwnBody& body = {});
   const CameraPercepts& percepts() const { return percepts_; }
 
   // Any representation on this pipeline's board after process (ScanGrid, ScanLineRegions,

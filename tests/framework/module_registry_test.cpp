@@ -65,8 +65,8 @@ TEST(ModuleRegistry, CommittedModulesJson) {
   EXPECT_EQ(p.at("FallState"), "FallDetector");
   EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "CameraMatrixProvider",
                                      "CameraVision", "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
-                                     "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "SelfLocalization",
-                                     "TorsoMatrixProvider"}));
+                                     "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "OwnBodyProvider",
+                                     "SelfLocalization", "TorsoMatrixProvider"}));
 }
 
 std::string providersError(const std::string& text) {
@@ -115,7 +115,7 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
   EXPECT_EQ(program.moduleOrder(),
             (Names{"ButtonStateProvider", "TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "HeadControl",
                    "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
-                   "ExposureCameraMatrixProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl"}));
+                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl"}));
 }
 
 TEST(RobotProgram, AProviderRemovedByConfigurationBecomesAnInput) {

@@ -14,6 +14,7 @@
 #include "controllers/modules/HeadControl.h"
 #include "controllers/modules/MotionEngineParams.h"
 #include "controllers/modules/SelfLocalization.h"
+#include "perception/OwnBody.h"
 #include "robot/Error.h"
 #include "robot/Parameters.h"
 #include "robot/Paths.h"
@@ -134,6 +135,7 @@ TEST(Parameters, CommittedFilesHoldTodaysDefaults) {
   same("SelfLocalization", paramsToJson(modules::SelfLocalization::Params{}));
   same("BallLocator", paramsToJson(modules::BallLocator::Params{}));
   same("BehaviorControl", paramsToJson(modules::BehaviorControl::Params{}));
+  same("OwnBodyProvider", paramsToJson(OwnBodyParams{}));
   // And they load without complaint to the same values.
   const auto m = loadParams<MotionEngine::Params>("MotionEngine", dir);
   EXPECT_EQ(paramsToJson(m), paramsToJson(MotionEngine::Params{}));

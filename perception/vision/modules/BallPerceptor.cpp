@@ -12,6 +12,7 @@ void BallPerceptor::update() {
   vision::BallParams params;
   params.radius = in<VisionGeometry>().ballRadius;
   params.classifier = &vision::defaultBallClassifier();
+  params.ownBody = &in<OwnBody>();
   out<BallPercept>() = vision::detectBall(in<CameraImage>(), in<ScanLineRegions>(), in<FieldColourReference>(),
                                           in<ObstaclesPercept>(), in<CameraMatrix>(), params);
 }

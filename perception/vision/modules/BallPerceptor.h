@@ -1,8 +1,10 @@
 #pragma once
 // The ball: candidates from the regions, verified by their outline and the ball classifier
-// (perception/vision/BallDetector.h, models/vision/ball_classifier.yml).
+// (perception/vision/BallDetector.h, models/vision/ball_classifier.yml); none on the robot's
+// own body.
 // A module of the camera pipeline (perception/vision/CameraPipeline.h), once per image.
 #include "perception/CameraModel.h"
+#include "perception/OwnBody.h"
 #include "perception/vision/VisionTypes.h"
 #include "representations/perception/FieldColourReference.h"
 #include "representations/perception/VisionGeometry.h"
@@ -15,7 +17,8 @@ namespace nao::modules {
 class BallPerceptor
     : public Module<
           BallPerceptor,
-          Requires<CameraImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry>,
+          Requires<CameraImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry,
+                   OwnBody>,
           Provides<BallPercept>, Cadence::Cognition> {
  public:
   explicit BallPerceptor(const ModuleContext& context = {});
