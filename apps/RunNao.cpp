@@ -147,6 +147,9 @@ int runNao(const RunOptions& options) {
   config.lolaSocket = nao.lolaSocket;
   config.cameras = options.cameras != "none";
   config.lolaClock = nao.clock == "lola";
+  // --lockstep: a replay peer sends the next packet only after the answer, so a slow cycle
+  // (the program's build, a sanitizer) is not a stale stream.
+  if (nao.lockstep) config.staleCycles = 1000000;
   config.camera[0].device = nao.cameraTop;
   config.camera[1].device = nao.cameraBottom;
   if (!nao.cameraSettings.empty()) applyCameraSettings(nao.cameraSettings, config.camera);
@@ -154,13 +157,14 @@ int runNao(const RunOptions& options) {
   // hand-off instead of V4L2 (the folders were checked with the command line).
   if (options.cameras.rfind("files:", 0) == 0) {
     const std::string dir = options.cameras.substr(6);
-    const double start = monotonicSeconds();
+    // On the LoLA clock in lockstep (the first frame with the first packet), else the monotonic one.
+    const double start = nao.lockstep ? 0.0 : monotonicSeconds();
     std::string counts;
     for (CameraId cam : {CameraId::Top, CameraId::Bottom}) {
       std::vector<std::string> files = imageFilesIn(dir + "/" + cameraName(cam));
       counts += (counts.empty() ? "" : ", ") + std::to_string(files.size()) + " " + cameraName(cam);
       config.sources[static_cast<int>(cam)] =
-          std::make_shared<FileCamera>(cam, std::move(files), decodeImageFile, start, kCameraPeriod, logLine);
+          std::make_shared<FileCamera>(cam, std::move(files), decodeImageFile, start, kCameraPeriod, logLine, nao.lockstep);
     }
     logLine("run: cameras from the files in " + dir + " (" + counts + "), 30 Hz each, looping");
   }
@@ -227,6 +231,12 @@ int runNao(const RunOptions& options) {
       if (options.goTo.size() == 3)
         programConfig.goTo = Pose2(options.goTo[0], options.goTo[1], options.goTo[2] * M_PI / 180);
       programConfig.debug = debug.channels();
+      if (nao.lockstep) {  // built before the first answer: the same packets meet the same program
+        program = std::make_unique<RobotProgram>(programConfig);
+        programStart = first.time;
+        backend.answerSoftInPlace();
+        break;
+      }
       building = std::async(std::launch::async,
                             [programConfig] { return std::make_unique<RobotProgram>(programConfig); });
     }
@@ -284,8 +294,9 @@ int runNao(const RunOptions& options) {
       beliefs.push_back(std::move(b));
     });
     // Cognition in a thread of its own; started before this thread becomes real-time, so that
-    // it keeps the normal policy (threads inherit it).
-    program->startCognitionThread();
+    // it keeps the normal policy (threads inherit it). In lockstep it runs in each motion cycle
+    // after the answer, as in the simulator.
+    if (!nao.lockstep) program->startCognitionThread();
     useRealTimePriority();
     GameState lastGame;
     double time = first.time;
@@ -330,7 +341,7 @@ int runNao(const RunOptions& options) {
       gameController.sendReturnIfDue(frame.time, ret);
       stopAfterSeconds(frame.time);
     }
-    program->stopCognitionThread();
+    if (!nao.lockstep) program->stopCognitionThread();
     backend.setFallMonitor({});
   }
 

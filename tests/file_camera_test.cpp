@@ -108,6 +108,31 @@ TEST(FileCamera, OnlyBrokenFilesGiveNoFrames) {
   EXPECT_FALSE(camera.grab(image, 1.0));
 }
 
+// --lockstep: a due frame is waited for, however slow its decoding, and the schedule is kept
+// after a stall, so that a replay hands the same frames to the same cycles on any machine.
+TEST(FileCamera, InLockstepADueFrameIsWaitedForAndTheScheduleKept) {
+  const double period = 1.0 / 30;
+  auto slow = [](const std::string& path, CameraId c) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    return decodeIndex(path, c);
+  };
+  FileCamera camera(CameraId::Top, {"/x/f0.png", "/x/f1.png", "/x/f2.png"}, slow, 0.0, period, {}, true);
+  CameraImage image;
+  EXPECT_FALSE(camera.grab(image, -0.001));  // not due yet: no wait
+  ASSERT_TRUE(camera.grab(image, 0.0));      // due: one call, however long the decoding takes
+  EXPECT_EQ(image.yuyv[0], 0);
+  EXPECT_DOUBLE_EQ(image.timestamp, 0.0);
+  ASSERT_TRUE(camera.grab(image, 10.0));  // long after: the next frame on its own schedule
+  EXPECT_EQ(image.yuyv[0], 1);
+  EXPECT_DOUBLE_EQ(image.timestamp, period);
+  ASSERT_TRUE(camera.grab(image, 10.0));
+  EXPECT_EQ(image.yuyv[0], 2);
+  EXPECT_DOUBLE_EQ(image.timestamp, 2 * period);
+  // Only broken files: no wait forever, no frame.
+  FileCamera broken(CameraId::Top, {"/x/broken.png"}, decodeIndex, 0.0, period, [](const std::string&) {}, true);
+  EXPECT_FALSE(broken.grab(image, 1.0));
+}
+
 TEST(ImageFiles, PngAndJpegInNameOrder) {
   const fs::path dir = fs::path(::testing::TempDir()) / "file_camera_test";
   fs::remove_all(dir);

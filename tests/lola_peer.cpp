@@ -9,8 +9,13 @@
 //
 // usage: lola_peer --nao-soccer BIN [--cycles N] [--json FILE]
 //        lola_peer --nao-soccer BIN --soak SECONDS [--cameras files:DIR] [--arg PROGRAM_ARG]... [--emulated]
-// (--cameras: the program's, default none; --arg: words added to the soak run's command line;
-// --emulated: the program runs under an emulator, its answer times are measured, not judged.)
+//                  [--record FILE]
+//        lola_peer --nao-soccer BIN --replay FILE --answers FILE [--cameras files:DIR] [--arg PROGRAM_ARG]...
+// (--cameras: the program's, default none; --arg: words added to the soak or replay run's command
+// line; --emulated: the program runs under an emulator, its answer times are measured, not
+// judged; --record: every sensor packet the soak sends, length-prefixed; --replay: those packets
+// one at a time, each after the last one's answer, to a program in --lockstep, whose answers go
+// to --answers as text, one line per packet, for comparing two programs.)
 // Exit 0 when every check passed; the figures go to stdout (JSON) and the failures to stderr.
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -53,6 +58,7 @@ using namespace lola_wire;
 std::string camerasArg = "none";       // --cameras: the program's --cameras
 std::vector<std::string> programArgs;  // --arg: more words for the program (the soak run's)
 bool emulated = false;  // --emulated: the program runs under an emulator (--prefix qemu-x86_64 ...)
+std::FILE* recordFile = nullptr;  // --record: the packets sent, each after its 4-byte length (host order)
 
 // ---- the simulated robot ------------------------------------------------------------------
 struct Robot {
@@ -210,6 +216,11 @@ bool cycle(Peer& peer, Robot& robot, double& tick, Answer& a, Damage damage = Da
   }
   if (tolerateExtras > 0) --tolerateExtras;
   const std::string bytes = robot.packet(damage);
+  if (recordFile) {
+    const auto n = static_cast<uint32_t>(bytes.size());
+    std::fwrite(&n, sizeof n, 1, recordFile);
+    std::fwrite(bytes.data(), 1, bytes.size(), recordFile);
+  }
   const double sent = monotonic();
   peer.send(bytes);
   ++figures.cycles;
@@ -598,10 +609,59 @@ void soakRun(const std::string& bin, const std::string& dir, double seconds) {
   ::close(run.listener);
 }
 
+// --replay FILE --answers FILE: the recorded packets, one at a time, each sent once the last
+// one's answer has come (the program runs with --lockstep); each answer as a line of text
+// (its keys in order, every value as the float it was on the wire). Then LoLA goes away.
+void replayRun(const std::string& bin, const std::string& dir, const std::string& packetsFile,
+               const std::string& answersFile) {
+  check.phase = "replay";
+  std::vector<std::string> packets;
+  {
+    std::ifstream in(packetsFile, std::ios::binary);
+    check(static_cast<bool>(in), "cannot read " + packetsFile);
+    uint32_t n = 0;
+    while (in.read(reinterpret_cast<char*>(&n), sizeof n)) {
+      std::string b(n, '\0');
+      if (!in.read(b.data(), n)) break;
+      packets.push_back(std::move(b));
+    }
+  }
+  if (!check(!packets.empty(), "no packets in " + packetsFile)) return;
+  Run run = start(bin, dir, "replay", programArgs);
+  Peer peer(run.fd, run.child);
+  std::ofstream out(answersFile);
+  Answer a;
+  std::size_t answered = 0;
+  for (std::size_t i = 0; i < packets.size(); ++i) {
+    peer.send(packets[i]);
+    // The first answer waits for the program's build; under a sanitizer a cycle is slow.
+    if (!check(peer.next(a, monotonic() + (i == 0 ? 120 : 30)), "no answer to packet " + std::to_string(i))) break;
+    ++answered;
+    out << i;
+    for (const auto& [key, values] : a.values) {
+      out << ' ' << key;
+      char number[32];
+      for (double v : values) {
+        std::snprintf(number, sizeof number, " %.9g", v);
+        out << number;
+      }
+    }
+    out << " Sonar";
+    for (bool b : a.sonar) out << ' ' << b;
+    out << '\n';
+  }
+  check(answered == packets.size(), "answered " + std::to_string(answered) + " of " + std::to_string(packets.size()));
+  ::close(run.fd);  // LoLA goes away: the program ends
+  if (!check(run.child.exited(60000), "the program did not end after LoLA's socket closed")) kill(run.child.pid, SIGKILL);
+  if (!check.failures.empty()) std::fprintf(stderr, "lola_peer: the program's stderr:\n%s\n", run.child.stderrText().c_str());
+  ::close(run.listener);
+  std::fprintf(stderr, "lola_peer: replayed %zu packets, %zu answers to %s\n", packets.size(), answered, answersFile.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string bin, json;
+  std::string bin, json, record, replay, answers;
   int cycles = 1000;
   double soak = 0;
   for (int i = 1; i < argc; ++i) {
@@ -615,11 +675,16 @@ int main(int argc, char** argv) {
     else if (a == "--cameras" && i + 1 < argc) camerasArg = argv[++i];
     else if (a == "--arg" && i + 1 < argc) programArgs.push_back(argv[++i]);
     else if (a == "--emulated") emulated = true;
+    else if (a == "--record" && i + 1 < argc) record = argv[++i];
+    else if (a == "--replay" && i + 1 < argc) replay = argv[++i];
+    else if (a == "--answers" && i + 1 < argc) answers = argv[++i];
     else {
       std::fprintf(stderr,
                    "usage: lola_peer --nao-soccer BIN [--cycles N] [--json FILE]\n"
                    "       lola_peer --nao-soccer BIN --soak SECONDS [--chroot ROOT] [--prefix ARG]... [--json FILE]\n"
-                   "                 [--cameras none|files:DIR] [--arg PROGRAM_ARG]... [--emulated]\n");
+                   "                 [--cameras none|files:DIR] [--arg PROGRAM_ARG]... [--emulated] [--record FILE]\n"
+                   "       lola_peer --nao-soccer BIN --replay FILE --answers FILE [--cameras none|files:DIR]\n"
+                   "                 [--arg PROGRAM_ARG]...\n");
       return 2;
     }
   }
@@ -631,8 +696,19 @@ int main(int argc, char** argv) {
   if (const int parentExit = runInAHighPrioritySession("lola_peer"); parentExit >= 0) return parentExit;
   const std::string dir = mkWorkDir();
   int returnPackets = 0;
-  if (soak > 0) {
+  if (!replay.empty()) {
+    if (answers.empty()) {
+      std::fprintf(stderr, "lola_peer: --replay needs --answers FILE\n");
+      return 2;
+    }
+    replayRun(bin, dir, replay, answers);
+  } else if (soak > 0) {
+    if (!record.empty() && !(recordFile = std::fopen(record.c_str(), "wb"))) {
+      std::fprintf(stderr, "lola_peer: cannot write %s\n", record.c_str());
+      return 2;
+    }
     soakRun(bin, dir, soak);
+    if (recordFile) std::fclose(recordFile);
   } else {
     mainRun(bin, dir, cycles, returnPackets);
     stopRun(bin, dir, "SIGTERM");

@@ -32,3 +32,9 @@ if(NOT NAO_SANITIZE)
     set_tests_properties(robot_bundle_${root}_root_test PROPERTIES RUN_SERIAL TRUE TIMEOUT 900 SKIP_RETURN_CODE 77 LABELS "nao")
   endforeach()
 endif()
+# The robot executable and `nao-soccer run --backend nao` answer a recorded LoLA packet and image
+# sequence alike (--lockstep); skipped without ../shared's real images.
+add_test(NAME same_answers_test
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/same_answers_test.sh $<TARGET_FILE:nao-soccer-robot>
+                 $<TARGET_FILE:nao-soccer> $<TARGET_FILE:lola_peer> ${CMAKE_SOURCE_DIR})
+set_tests_properties(same_answers_test PROPERTIES TIMEOUT 600 SKIP_RETURN_CODE 77 LABELS "nao")

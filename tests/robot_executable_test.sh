@@ -49,6 +49,8 @@ same --field "$tmp/missing.json"
 echo '{"field": {}}' >"$tmp/bad.json"
 same --field "$tmp/bad.json"
 same --camera-settings "$tmp/missing.json" --lola-socket "$tmp/none.sock"
+same --lockstep
+same --lockstep --clock lola --cameras v4l2
 # The explicit form the start script uses takes the same options.
 "$robot" run --backend nao --help | cmp -s - "$tmp/robot.help" || fail "'run --backend nao --help' differs from '--help'"
 only_full() {  # only_full ARGS...: exit 2 and one line

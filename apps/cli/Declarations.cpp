@@ -141,7 +141,11 @@ void CommandLine::declare() {
     c.inputFile("--camera-settings", n.cameraSettings, "nao: camera resolution, exposure, gain, white balance (JSON)");
     c.choice("--clock", n.clock, {"monotonic", "lola"},
              "nao: the program's clock: monotonic (as on a NAO) or lola, 12 ms per LoLA packet, for a simulator "
-             "slower than real time (tests/sim_lola_peer; only with --cameras none or socket:PATH)");
+             "slower than real time (tests/sim_lola_peer; only with --cameras none or socket:PATH, or with --lockstep)");
+    c.flag("--lockstep", n.lockstep,
+           "nao: deterministic, for replaying recorded LoLA packets and images: the program is built before the first "
+           "answer, cognition runs in the motion cycle, file frames are due on the LoLA clock and waited for, no "
+           "stale-sensor timeout (needs --clock lola and --cameras none or files:DIR)");
     c.count("--team", n.team, 0, 254, "nao: team number for the GameController (0: none)");
     c.count("--player", n.player, 1, gc::kMaxPlayers, "nao: player number");
     c.count("--gc-port", n.gcPort, 1, 65535, "nao: GameController UDP port");
@@ -152,15 +156,18 @@ void CommandLine::declare() {
                {"--seed", "--lighting", "--miscalibration", "--model", "--pose", "--images", "--ball"});
     c.onlyWith("--backend", "nao", r.backend,
                {"--lola-socket", "--camera-top", "--camera-bottom", "--camera-settings", "--team", "--player",
-                "--gc-port", "--gc-return-port", "--gc-address"});
+                "--gc-port", "--gc-return-port", "--gc-address", "--lockstep"});
     c.rule([&r] {
       const bool simValue = r.cameras == "on" || r.cameras == "off";
       if (!r.cameras.empty() && simValue != (r.backend == "sim"))
         return "--cameras: " + r.cameras + " is not a choice with --backend " + r.backend +
                (r.backend == "sim" ? " (on or off)" : " (none, v4l2, files:DIR or socket:PATH)");
-      if (r.nao.clock == "lola" && (r.backend != "nao" || !(r.cameras == "none" || r.cameras.rfind("socket:", 0) == 0)))
+      if (r.nao.lockstep && (r.nao.clock != "lola" || !(r.cameras == "none" || r.cameras.rfind("files:", 0) == 0)))
+        return std::string("--lockstep: only with --clock lola and --cameras none or files:DIR");
+      if (r.nao.clock == "lola" && !r.nao.lockstep &&
+          (r.backend != "nao" || !(r.cameras == "none" || r.cameras.rfind("socket:", 0) == 0)))
         return std::string("--clock lola: only with --backend nao and --cameras none or socket:PATH (its frames carry the "
-                           "LoLA clock)");
+                           "LoLA clock), or with --lockstep");
       if (r.backend == "sim" && r.seconds > 3600) return std::string("--seconds: at most 3600 with --backend sim");
       return std::string();
     });

@@ -35,6 +35,7 @@ struct NaoRunOptions {
   int team = 0, player = 1, gcPort = 3838, gcReturnPort = 3939;
   std::string gcAddress = "0.0.0.0";
   std::string clock = "monotonic";  // or "lola": 12 ms per LoLA packet
+  bool lockstep = false;            // one packet at a time, deterministic (--lockstep)
 };
 
 struct RunOptions {

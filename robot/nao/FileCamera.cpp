@@ -6,9 +6,9 @@
 namespace nao {
 
 FileCamera::FileCamera(CameraId camera, std::vector<std::string> files, Decoder decode, double start, double period,
-                       Log log)
+                       Log log, bool waitForDecode)
     : camera_(camera), files_(std::move(files)), decode_(std::move(decode)), period_(period), due_(start),
-      log_(std::move(log)) {
+      log_(std::move(log)), waitForDecode_(waitForDecode) {
   if (!files_.empty()) thread_ = std::thread([this] { decodeLoop(); });
 }
 
@@ -52,27 +52,40 @@ void FileCamera::decodeLoop() {
     } catch (const std::exception& e) {
       broken[i] = true;
       if (log_) log_(std::string("camera ") + cameraName(camera_) + ": skipped " + e.what());
-      if (++brokenCount == files_.size()) return;  // nothing left to show
+      if (++brokenCount == files_.size()) {  // nothing left to show
+        std::lock_guard<std::mutex> lock(mutex_);
+        exhausted_ = true;
+        decoded_.notify_all();
+        return;
+      }
       continue;
     }
     std::lock_guard<std::mutex> lock(mutex_);
     std::swap(next_, image);
     ready_ = true;
+    decoded_.notify_all();
   }
 }
 
 bool FileCamera::grab(CameraImage& image, double now) {
-  if (now < due_) return false;
+  if (now < due_ || files_.empty()) return false;
   {
-    std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+    std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
+    if (waitForDecode_) {
+      lock.lock();
+      decoded_.wait(lock, [this] { return ready_ || exhausted_; });
+    } else {
+      lock.try_lock();
+    }
     if (!lock.owns_lock() || !ready_) return false;  // not decoded yet: the next cycle
     std::swap(image, next_);
     ready_ = false;
   }
   wake_.notify_one();
   image.timestamp = due_;
-  // After a stall (a busy machine) the next frame is due a period from now, not in a burst.
-  due_ = std::max(due_ + period_, now + period_ * 0.5);
+  // After a stall (a busy machine) the next frame is due a period from now, not in a burst;
+  // in lockstep the schedule is kept (the clock is the LoLA packets').
+  due_ = waitForDecode_ ? due_ + period_ : std::max(due_ + period_, now + period_ * 0.5);
   return true;
 }
 

@@ -25,9 +25,12 @@ class FileCamera : public CameraSource {
   using Decoder = std::function<CameraImage(const std::string& path, CameraId camera)>;
   using Log = std::function<void(const std::string&)>;
 
-  // The first frame is due at `start` (CLOCK_MONOTONIC seconds), then one every period.
+  // The first frame is due at `start` (on the clock grab's `now` is given in), then one every
+  // period. waitForDecode (--lockstep): grab waits for a due frame's decoding instead of
+  // leaving it to a later cycle, and frames stay on their schedule, so that a replay hands the
+  // same frames to the same cycles whatever the machine's speed.
   FileCamera(CameraId camera, std::vector<std::string> files, Decoder decode, double start,
-             double period = kCameraPeriod, Log log = {});
+             double period = kCameraPeriod, Log log = {}, bool waitForDecode = false);
   ~FileCamera() override;
   FileCamera(const FileCamera&) = delete;
   FileCamera& operator=(const FileCamera&) = delete;
@@ -46,9 +49,10 @@ class FileCamera : public CameraSource {
   Decoder decode_;
   double period_, due_;
   Log log_;
-  std::mutex mutex_;  // ready_, next_, stop_
-  std::condition_variable wake_;
-  bool ready_ = false, stop_ = false;
+  bool waitForDecode_;
+  std::mutex mutex_;  // ready_, next_, stop_, exhausted_
+  std::condition_variable wake_, decoded_;
+  bool ready_ = false, stop_ = false, exhausted_ = false;
   CameraImage next_;
   std::thread thread_;
 };

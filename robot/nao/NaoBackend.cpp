@@ -197,7 +197,8 @@ bool NaoBackend::waitForSensors(SensorFrame& frame) {
 bool NaoBackend::takeImage(CameraId camera, CameraImage& image) {
   auto& cam = cameras_[static_cast<int>(camera)];
   if (!cam) return false;
-  if (!cam->grab(image, monotonic())) return false;
+  // On the LoLA clock (--clock lola) the frames are due on it too: the time of this cycle's packet.
+  if (!cam->grab(image, config_.lolaClock ? static_cast<double>(stats_.packets) * kCycleTime : monotonic())) return false;
   if (!config_.lolaClock) image.timestamp -= start_;
   return true;
 }
