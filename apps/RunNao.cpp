@@ -29,6 +29,7 @@
 #include "perception/vision/BallClassifier.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
+#include "representations/infrastructure/ChallengeMode.h"
 #include "representations/infrastructure/GameControllerData.h"
 #include "representations/infrastructure/SafetyState.h"
 #include "robot/nao/FileCamera.h"
@@ -299,6 +300,7 @@ int runNao(const RunOptions& options) {
     if (!nao.lockstep) program->startCognitionThread();
     useRealTimePriority();
     GameState lastGame;
+    int lastChallengeId = 0;
     double time = first.time;
     double cpuStart = threadCpuMs();
     while (true) {
@@ -325,8 +327,12 @@ int runNao(const RunOptions& options) {
             logLine("game: chest button ignored, the GameController decides");
           else if (e == ButtonEvent::Unstiffen)
             backend.safety().fault(SafetyFault::User, "head buttons held: unstiffened (chest button to stiffen again)");
-          // StartCalibration, StartCalibrationEvaluation: on the board (ButtonState) for the behaviour
+          // StartCalibration, StartCalibrationEvaluation, HeadTap: ChallengeModeProvider's
         }
+      }
+      if (bb.has<ChallengeMode>() && bb.read<ChallengeMode>().modeId != lastChallengeId) {
+        lastChallengeId = bb.read<ChallengeMode>().modeId;
+        logLine(std::string("challenge: ") + challengeModeName(bb.read<ChallengeMode>().mode) + " mode");
       }
       const GameState& game = bb.read<GameState>();
       if (!game.fromGameController && (game.state != lastGame.state || game.penalty != lastGame.penalty))

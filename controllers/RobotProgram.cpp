@@ -11,6 +11,7 @@
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameControllerData.h"
+#include "representations/infrastructure/ChallengeMode.h"
 #include "representations/infrastructure/GameState.h"
 #include "representations/infrastructure/SafetyState.h"
 #include "representations/perception/VisionGeometry.h"
@@ -28,7 +29,7 @@ struct TypeList {};
 // cognition interprets its images with, the calibration the app sets, the game state and the
 // operator's command. Cognition to motion: the behaviour's requests.
 using MotionToCognition =
-    TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState, BehaviorCommand>;
+    TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState, BehaviorCommand, ChallengeMode>;
 using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest>;
 
 template <class T>

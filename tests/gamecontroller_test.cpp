@@ -384,6 +384,27 @@ TEST_F(Buttons, AllHeadButtonsUnstiffen) {
   EXPECT_TRUE(run({}, 0.1).empty());
 }
 
+TEST_F(Buttons, AHeadTapIsOneHeadButtonBrieflyAlone) {
+  for (int button : {HeadFront, HeadMiddle, HeadRear}) {
+    EXPECT_TRUE(run({button}, 0.2).empty());  // fires on release
+    EXPECT_EQ(run({}, 0.1), std::vector<ButtonEvent>{ButtonEvent::HeadTap}) << button;
+  }
+  EXPECT_TRUE(run({HeadMiddle}, 0.024).empty());  // a bounce, shorter than 0.05 s
+  EXPECT_TRUE(run({}, 0.1).empty());
+  EXPECT_TRUE(run({HeadMiddle}, 1.2).empty());  // held: no tap
+  EXPECT_TRUE(run({}, 0.1).empty());
+  EXPECT_TRUE(run({HeadFront, HeadMiddle}, 0.2).empty());  // two at once
+  EXPECT_TRUE(run({}, 0.1).empty());
+  // The calibration combinations are no taps, and a chest press during one is no tap either.
+  EXPECT_TRUE(run({ChestButton, HeadFront}, 0.9).empty());  // held 0.9 s: nothing at all
+  EXPECT_TRUE(run({}, 0.1).empty());
+  EXPECT_EQ(run({ChestButton, HeadFront}, 1.1), std::vector<ButtonEvent>{ButtonEvent::StartCalibration});
+  EXPECT_TRUE(run({}, 0.1).empty());
+  EXPECT_TRUE(run({HeadRear}, 0.1).empty());
+  EXPECT_TRUE(run({HeadRear, ChestButton}, 0.1).empty());
+  EXPECT_TRUE(run({}, 0.1).empty());
+}
+
 TEST(ChestColour, FollowsTheRules) {
   GameState s;
   EXPECT_EQ(chestColour(s), (std::array<double, 3>{0, 0, 0}));

@@ -11,6 +11,7 @@ enum class ButtonEvent {
   StartCalibration,            // chest + head front held >= 1 s
   StartCalibrationEvaluation,  // chest + head rear held >= 1 s
   Unstiffen,                   // all three head buttons held >= 1 s
+  HeadTap,                     // one head button alone, pressed and released within 0.05-1 s (next task)
 };
 const char* buttonEventName(ButtonEvent e);
 

@@ -250,6 +250,7 @@ const char* buttonEventName(ButtonEvent e) {
     case ButtonEvent::StartCalibration: return "chest + head front (start calibration)";
     case ButtonEvent::StartCalibrationEvaluation: return "chest + head rear (start the calibration evaluation)";
     case ButtonEvent::Unstiffen: return "all head buttons (unstiffen)";
+    case ButtonEvent::HeadTap: return "head tap";
   }
   return "?";
 }
@@ -275,6 +276,20 @@ const ButtonState& ButtonInterface::update(const std::array<double, NumTouch>& t
     comboFired_ = true;
     s.events.push_back(combo_ == 1 ? ButtonEvent::StartCalibration
                                    : combo_ == 2 ? ButtonEvent::StartCalibrationEvaluation : ButtonEvent::Unstiffen);
+  }
+
+  // A tap: one head button at a time, no chest, released within kTapMin..kTapMax of the press.
+  const int head = s.headFront + s.headMiddle + s.headRear;
+  if (head > 0) {
+    if (headSince_ < 0) {
+      headSince_ = time;
+      tapValid_ = true;
+    }
+    if (head > 1 || s.chest) tapValid_ = false;
+  } else if (headSince_ >= 0) {
+    const double held = time - headSince_;
+    if (tapValid_ && held >= kTapMin - 1e-9 && held <= kTapMax + 1e-9) s.events.push_back(ButtonEvent::HeadTap);
+    headSince_ = -1;
   }
 
   if (s.chest) {

@@ -86,7 +86,8 @@ namespace nao {
 
 class ButtonInterface {
  public:
-  static constexpr double kHoldTime = 1.0;  // s
+  static constexpr double kHoldTime = 1.0;                    // s
+  static constexpr double kTapMin = 0.05, kTapMax = kHoldTime;  // s a head tap lasts
   // touch: the Touch array (LoLA order); time: backend seconds. Returns this cycle's state.
   const ButtonState& update(const std::array<double, NumTouch>& touch, double time);
   const ButtonState& state() const { return state_; }
@@ -98,6 +99,8 @@ class ButtonInterface {
   double comboSince_ = -1;         // when the current combination started
   int combo_ = 0;                  // which combination is held (bit mask)
   bool comboFired_ = false;
+  double headSince_ = -1;  // when a head button was first pressed, none before
+  bool tapValid_ = false;  // one head button alone so far, no chest
 };
 
 // Receives GameController packets on UDP (non-blocking, polled once a cycle), keeps the game

@@ -64,7 +64,7 @@ TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
   EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "CameraMatrixProvider",
-                                     "CameraVision", "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
+                                     "CameraVision", "ChallengeModeProvider", "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
                                      "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "OwnBodyProvider",
                                      "SelfLocalization", "TorsoMatrixProvider"}));
 }
@@ -113,7 +113,8 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
   RobotProgram program;
   // Motion in dependency order, then cognition.
   EXPECT_EQ(program.moduleOrder(),
-            (Names{"ButtonStateProvider", "TorsoMatrixProvider", "CameraMatrixProvider", "FallDetector", "HeadControl",
+            (Names{"ButtonStateProvider", "TorsoMatrixProvider", "CameraMatrixProvider", "ChallengeModeProvider",
+                   "FallDetector", "HeadControl",
                    "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
                    "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl"}));
 }

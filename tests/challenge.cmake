@@ -1,0 +1,4 @@
+# The calibration challenge (issue 20): the referee's buttons through the robot's own touch
+# sensors, judged in the simulator.
+nao_add_test(challenge_buttons_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/challenge_buttons_test.cpp
+             LIBS nao_scenarios TIMEOUT 300)
