@@ -84,6 +84,7 @@ void Pipeline::sort() {
       auto it = provider.find(t.type);
       if (it == provider.end())
         throw Error(where, modules_[i]->name() + " requires " + t.name + ", which no module provides and no input is");
+      if (t.previous) continue;  // the last run's value: no ordering edge
       path.emplace_back(i, t.name);
       self(self, it->second);
       path.pop_back();

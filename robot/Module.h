@@ -12,6 +12,11 @@
 // reach, so a module cannot read or write anything it did not declare. The Pipeline orders the
 // modules from these declarations.
 //
+// Previous<T> in Requires<> (B-Human's USES) reads T as its provider left it in the last run of
+// this cadence (default-constructed before the first): in<Previous<T>>() returns a const T&. It
+// adds no ordering edge, so two modules can each read the other's output, one of them a run
+// late (a behaviour that asks a calibrator and reads its status).
+//
 // Debug: a module tests debugging(kChannel) and writes debug(kChannel, [&] { return json; })
 // on a channel declared in its .cpp (NAO_DEBUG_CHANNEL, robot/Debug.h); the payload is built
 // only while the channel is subscribed.
@@ -31,6 +36,8 @@ namespace nao {
 
 template <class... T>
 struct Requires {};
+template <class T>
+struct Previous {};
 template <class... T>
 struct Provides {};
 
@@ -42,6 +49,7 @@ inline const char* cadenceName(Cadence c) { return c == Cadence::Motion ? "motio
 struct RepresentationType {
   std::type_index type;
   std::string name;
+  bool previous = false;  // required as Previous<T>: the last run's value, no ordering edge
   template <class T>
   static RepresentationType of() {
     return {std::type_index(typeid(T)), typeName<T>()};
@@ -79,6 +87,25 @@ class ModuleBase {
 };
 
 namespace detail {
+// A requirement's representation: T for T and for Previous<T>.
+template <class R>
+struct Stored {
+  using type = R;
+  static constexpr bool previous = false;
+};
+template <class T>
+struct Stored<Previous<T>> {
+  using type = T;
+  static constexpr bool previous = true;
+};
+template <class R>
+using StoredT = typename Stored<R>::type;
+template <class R>
+RepresentationType requirement() {
+  RepresentationType t = RepresentationType::of<StoredT<R>>();
+  t.previous = Stored<R>::previous;
+  return t;
+}
 template <class T, class... L>
 inline constexpr bool contains = (std::is_same_v<T, L> || ...);
 template <class... L>
@@ -93,14 +120,14 @@ class Module;
 template <class Derived, class... R, class... P, Cadence C>
 class Module<Derived, Requires<R...>, Provides<P...>, C> : public ModuleBase {
   static_assert(sizeof...(P) > 0, "a module provides at least one representation");
-  static_assert(detail::distinct<R...>::value, "a representation is listed twice in Requires<>");
+  static_assert(detail::distinct<detail::StoredT<R>...>::value, "a representation is listed twice in Requires<>");
   static_assert(detail::distinct<P...>::value, "a representation is listed twice in Provides<>");
-  static_assert(!(detail::contains<R, P...> || ...),
+  static_assert(!(detail::contains<detail::StoredT<R>, P...> || ...),
                 "a module cannot require what it provides (keep the state in the module instead)");
 
  public:
   static constexpr Cadence kCadence = C;
-  static std::vector<RepresentationType> declaredRequires() { return {RepresentationType::of<R>()...}; }
+  static std::vector<RepresentationType> declaredRequires() { return {detail::requirement<R>()...}; }
   static std::vector<RepresentationType> declaredProvides() { return {RepresentationType::of<P>()...}; }
 
   const std::string& name() const override { return shortTypeName<Derived>(); }
@@ -108,7 +135,7 @@ class Module<Derived, Requires<R...>, Provides<P...>, C> : public ModuleBase {
   std::vector<RepresentationType> required() const override { return declaredRequires(); }
   std::vector<RepresentationType> provided() const override { return declaredProvides(); }
   void execute(Blackboard& board) final {
-    in_ = std::tuple<const R*...>(&board.read<R>()...);
+    in_ = std::tuple<const detail::StoredT<R>*...>(input<R>(board)...);
     out_ = std::tuple<P*...>(&board.write<P>()...);
     update();
   }
@@ -118,9 +145,9 @@ class Module<Derived, Requires<R...>, Provides<P...>, C> : public ModuleBase {
   virtual void update() = 0;
 
   template <class T>
-  const T& in() const {
+  const detail::StoredT<T>& in() const {
     static_assert(detail::contains<T, R...>, "in<T>(): T is not in this module's Requires<>");
-    return *std::get<const T*>(in_);
+    return *std::get<const detail::StoredT<T>*>(in_);
   }
   template <class T>
   T& out() {
@@ -129,7 +156,13 @@ class Module<Derived, Requires<R...>, Provides<P...>, C> : public ModuleBase {
   }
 
  private:
-  std::tuple<const R*...> in_{};
+  // A requirement must be on the board; a Previous<T> is created there before its provider's first run.
+  template <class Q>
+  static const detail::StoredT<Q>* input(Blackboard& board) {
+    if constexpr (detail::Stored<Q>::previous) return &board.write<detail::StoredT<Q>>();
+    else return &board.read<Q>();
+  }
+  std::tuple<const detail::StoredT<R>*...> in_{};
   std::tuple<P*...> out_{};
 };
 

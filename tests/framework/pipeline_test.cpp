@@ -48,6 +48,18 @@ class LoopC : public Module<LoopC, Requires<Model>, Provides<Decision>> {
   void update() override {}
 };
 
+// The loop closed through Previous<>: A reads C's Decision of the last run.
+class PrevLoopA : public Module<PrevLoopA, Requires<Previous<Decision>, Raw>, Provides<Filtered>> {
+  void update() override { out<Filtered>().value = in<Raw>().value + in<Previous<Decision>>().value; }
+};
+class PrevLoopC : public Module<PrevLoopC, Requires<Model>, Provides<Decision>> {
+  void update() override { out<Decision>().value = in<Model>().value * 10; }
+};
+// Previous<> of what nothing provides.
+class PrevOrphan : public Module<PrevOrphan, Requires<Previous<Decision>>, Provides<Model>> {
+  void update() override {}
+};
+
 std::string sortError(Pipeline& p) {
   try {
     p.sort();
@@ -148,6 +160,38 @@ TEST(Pipeline, EmptyAndIndependentModulesKeepTheirOrder) {
   p.inputs<Raw>();
   p.add(std::make_unique<Filter>());
   EXPECT_EQ(p.order(), (std::vector<std::string>{"Filter"}));
+}
+
+TEST(Pipeline, PreviousClosesALoopWithTheLastRunsValue) {
+  Pipeline p;
+  p.add(std::make_unique<PrevLoopC>());
+  p.add(std::make_unique<LoopB>());
+  p.add(std::make_unique<PrevLoopA>());
+  p.inputs<Raw>();
+  p.sort();  // no cycle: Previous<> adds no edge
+  EXPECT_EQ(p.order(), (std::vector<std::string>{"PrevLoopA", "LoopB", "PrevLoopC"}));
+  const auto required = PrevLoopA::declaredRequires();
+  ASSERT_EQ(required.size(), 2u);
+  EXPECT_EQ(required[0].name, "Decision");
+  EXPECT_TRUE(required[0].previous);
+  EXPECT_FALSE(required[1].previous);
+  Blackboard board;
+  board.write<Raw>().value = 1;
+  // LoopB copies nothing (its update is empty), so Model stays what the test writes.
+  board.write<Model>().value = 5;
+  p.update(board);  // A reads the default Decision (0)
+  EXPECT_EQ(board.read<Filtered>().value, 1);
+  EXPECT_EQ(board.read<Decision>().value, 50);
+  board.write<Model>().value = 7;
+  p.update(board);  // A reads the last run's Decision (50), C then writes 70
+  EXPECT_EQ(board.read<Filtered>().value, 51);
+  EXPECT_EQ(board.read<Decision>().value, 70);
+}
+
+TEST(Pipeline, PreviousStillNeedsAProvider) {
+  Pipeline p;
+  p.add(std::make_unique<PrevOrphan>());
+  EXPECT_EQ(sortError(p), "module pipeline: PrevOrphan requires Decision, which no module provides and no input is");
 }
 
 TEST(TypeName, ReadableNames) {
