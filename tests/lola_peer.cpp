@@ -4,7 +4,8 @@
 // -- nothing of robot/nao/ is linked -- at LoLA's 12 ms rate. A small servo model answers the
 // joint commands with measured angles. It checks every answer (keys, array lengths, types,
 // LoLA joint order), the stiffness ramps, going soft in place on a corrupt packet, a fall, a
-// stale stream, a closed socket and SIGTERM/SIGINT/--seconds, the buttons, the GameController
+// stale stream, a closed socket and SIGTERM/SIGINT/--seconds, the buttons (with the calibration
+// challenge's: its modes and the head tap), the GameController
 // (packets built byte by byte on UDP, chest LED, return packets) and the answer latency.
 //
 // usage: lola_peer --nao-soccer BIN [--cycles N] [--json FILE]
@@ -40,6 +41,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <sstream>
@@ -567,6 +569,24 @@ void stopRun(const std::string& bin, const std::string& dir, const std::string& 
     expectRamp(peer, robot, tick, 200, "after the chest button");
     check.phase = how;
   }
+  if (how == "SIGINT") {
+    // The calibration challenge's referee: chest + head front held 1.2 s (calibration mode), a
+    // head tap, chest + head rear held 1.2 s (evaluation mode); the robot stays stiff.
+    check.phase = "challenge buttons";
+    auto hold = [&](std::initializer_list<int> touched, int cycles) {
+      for (int t : touched) robot.s.touch[t] = 1;
+      for (int c = 0; c < cycles; ++c)
+        if (cycle(peer, robot, tick, a)) check(a.maxStiffness() > 0.5, "the robot went soft during the challenge's buttons");
+      for (int t : touched) robot.s.touch[t] = 0;
+    };
+    hold({kChest, kHeadFront}, 100);
+    hold({}, 20);
+    hold({kHeadMiddle}, 15);
+    hold({}, 20);
+    hold({kChest, kHeadRear}, 100);
+    hold({}, 20);
+    check.phase = how;
+  }
   if (how == "SIGTERM" || how == "SIGINT") {
     for (int c = 0; c < 30; ++c) cycle(peer, robot, tick, a);
     kill(run.child.pid, how == "SIGTERM" ? SIGTERM : SIGINT);
@@ -580,6 +600,11 @@ void stopRun(const std::string& bin, const std::string& dir, const std::string& 
   if (how == "SIGTERM")
     for (const char* e : {"buttons: all head buttons (unstiffen)", "going soft in place: head buttons held",
                           "safety: resuming (chest button)"})
+      check(contains(log, e), std::string("the log lacks '") + e + "'");
+  if (how == "SIGINT")
+    for (const char* e : {"buttons: chest + head front (start calibration)", "challenge: calibration mode",
+                          "buttons: head tap", "buttons: chest + head rear (start the calibration evaluation)",
+                          "challenge: evaluation mode"})
       check(contains(log, e), std::string("the log lacks '") + e + "'");
   ::close(run.fd);
   ::close(run.listener);
