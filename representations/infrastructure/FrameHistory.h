@@ -18,6 +18,7 @@ struct FrameHistory {
     JointArray joints{};
     Eigen::Isometry3d robotToTorso = Eigen::Isometry3d::Identity();
     Pose2 odometry;  // Odometry::pose after this cycle's motion
+    Eigen::Vector2d imuAngle = Eigen::Vector2d::Zero();  // the torso's roll and pitch (IMU), rad
   };
   std::deque<Entry> entries;  // oldest first
 
@@ -41,6 +42,23 @@ struct FrameHistory {
     const Eigen::Quaterniond qa(a.robotToTorso.linear()), qb(b.robotToTorso.linear());
     robotToTorso.linear() = qa.slerp(s, qb).toRotationMatrix();
     robotToTorso.translation() = a.robotToTorso.translation() + s * (b.robotToTorso.translation() - a.robotToTorso.translation());
+    return true;
+  }
+
+  // The IMU's roll and pitch at time t, interpolated as above (what a calibration sample of an
+  // image taken at t needs). False when the history is empty.
+  bool imuAngleAt(double t, Eigen::Vector2d& angle) const {
+    if (entries.empty()) return false;
+    std::size_t i = 1;
+    while (i < entries.size() && entries[i].time < t) ++i;
+    if (i == entries.size() || t <= entries.front().time) {
+      angle = (t <= entries.front().time ? entries.front() : entries.back()).imuAngle;
+      return true;
+    }
+    const Entry &a = entries[i - 1], &b = entries[i];
+    const double span = b.time - a.time;
+    const double s = span > 0 ? (t - a.time) / span : 1.0;
+    angle = a.imuAngle + s * (b.imuAngle - a.imuAngle);
     return true;
   }
 

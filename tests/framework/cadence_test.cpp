@@ -335,6 +335,24 @@ TEST(FrameHistoryProvider, OdometryAtAnImageTimeIsInterpolated) {
   EXPECT_FALSE(FrameHistory{}.odometryAt(0, p));
 }
 
+TEST(FrameHistoryProvider, ImuAngleAtAnImageTimeIsInterpolated) {
+  ModuleHarness h = ModuleHarness::make<modules::FrameHistoryProvider>();
+  h.fix(TorsoState{}).fix(Odometry{});
+  SensorFrame f;
+  for (int i = 0; i < 10; ++i) {
+    f.time = i * kCycleTime;
+    f.inertial.angle = Eigen::Vector2d(0.01 * i, -0.02 * i);
+    h.fix(f).run();
+  }
+  Eigen::Vector2d a;
+  ASSERT_TRUE(h.get<FrameHistory>().imuAngleAt(4.25 * kCycleTime, a));
+  EXPECT_NEAR(a.x(), 0.0425, 1e-12);
+  EXPECT_NEAR(a.y(), -0.085, 1e-12);
+  ASSERT_TRUE(h.get<FrameHistory>().imuAngleAt(100, a));  // after the history: the newest
+  EXPECT_NEAR(a.x(), 0.09, 1e-12);
+  EXPECT_FALSE(FrameHistory{}.imuAngleAt(0, a));
+}
+
 TEST(ExposureCameraMatrixProvider, InvalidWithoutHistoryOrImage) {
   ModuleHarness h = ModuleHarness::make<modules::ExposureCameraMatrixProvider>();
   CurrentImage img;
