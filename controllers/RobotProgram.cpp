@@ -12,6 +12,7 @@
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameControllerData.h"
 #include "representations/infrastructure/ChallengeMode.h"
+#include "representations/perception/CalibrationStatus.h"
 #include "representations/infrastructure/GameState.h"
 #include "representations/infrastructure/SafetyState.h"
 #include "representations/perception/VisionGeometry.h"
@@ -30,7 +31,7 @@ struct TypeList {};
 // operator's command. Cognition to motion: the behaviour's requests.
 using MotionToCognition =
     TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState, BehaviorCommand, ChallengeMode>;
-using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest>;
+using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest, CalibrationStatus>;
 
 template <class T>
 void copyOne(const Blackboard& from, Blackboard& to) {
@@ -60,11 +61,11 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   context.headId = config.headId;
   if (config.motion) context.params["MotionEngine"] = *config.motion;
   if (config.field) context.params[modules::kFieldParams] = *config.field;
+  context.params["CameraCalibrationProvider"] = config.calibration;
   context.debug = debug_ = config.debug;
   motion_.setDebug(config.debug, "motion");
   cognition_.setDebug(config.debug, "cognition");
 
-  motionBoard_.write<CameraCalibration>() = config.calibration;
   motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand
   motionBoard_.write<HeadMotionRequest>() = HeadMotionRequest{};
   motionBoard_.write<GameControllerData>() = GameControllerData{};
@@ -74,18 +75,30 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   // GameController said, the backend's safety, the operator's command), and the behaviour's
   // requests: copied from cognition when a cognition module provides them, else written by a
   // scenario, a test or the app.
-  motion_.inputs<SensorFrame, CameraImages, CameraCalibration, MotionRequest, HeadMotionRequest, GameControllerData,
-                 SafetyState, BehaviorCommand>();
-  std::set<std::type_index> motionHas = {typeid(SensorFrame),       typeid(CameraImages),
-                                         typeid(CameraCalibration), typeid(MotionRequest),
-                                         typeid(HeadMotionRequest), typeid(GameControllerData),
-                                         typeid(SafetyState),       typeid(BehaviorCommand)};
+  motion_.inputs<SensorFrame, CameraImages, MotionRequest, HeadMotionRequest, GameControllerData, SafetyState,
+                 BehaviorCommand>();
+  std::set<std::type_index> motionHas = {typeid(SensorFrame),        typeid(CameraImages),
+                                         typeid(MotionRequest),      typeid(HeadMotionRequest),
+                                         typeid(GameControllerData), typeid(SafetyState),
+                                         typeid(BehaviorCommand)};
   std::set<std::type_index> cognitionHas;
   for (const std::string& name : chosenModules(providers)) {
     std::unique_ptr<ModuleBase> m = createModule(name, context);
     auto& has = m->cadence() == Cadence::Motion ? motionHas : cognitionHas;
     for (const auto& t : m->provided()) has.insert(t.type);
     (m->cadence() == Cadence::Motion ? motion_ : cognition_).add(std::move(m));
+  }
+  // Without CameraCalibrationProvider the calibration is the one the program was built with;
+  // the calibrator's status comes from cognition when a module there provides it.
+  if (!motionHas.count(typeid(CameraCalibration))) {
+    motionBoard_.write<CameraCalibration>() = config.calibration;
+    motion_.inputs<CameraCalibration>();
+    motionHas.insert(typeid(CameraCalibration));
+  }
+  motionBoard_.write<CalibrationStatus>() = CalibrationStatus{};
+  if (!motionHas.count(typeid(CalibrationStatus))) {
+    motion_.inputs<CalibrationStatus>();
+    motionHas.insert(typeid(CalibrationStatus));
   }
   // A configuration without GameStateProvider: the game state stays the default (INITIAL).
   if (!motionHas.count(typeid(GameState))) {

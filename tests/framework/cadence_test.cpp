@@ -16,6 +16,9 @@
 #include "controllers/modules/FrameHistoryProvider.h"
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
+#include "representations/perception/CalibrationStatus.h"
+#include "representations/perception/CameraMatrices.h"
+#include "representations/perception/ImageCameraMatrix.h"
 #include "robot/ForwardKinematics.h"
 #include "robot/ModuleRegistry.h"
 #include "tests/support/ModuleHarness.h"
@@ -42,6 +45,23 @@ class CountingBehavior : public Module<CountingBehavior, Requires<CurrentImage, 
   }
 };
 NAO_REGISTER_MODULE(CountingBehavior);
+
+// A stand-in calibrator: from its fifth image on it reports a solution applied.
+class ApplyingCalibrator
+    : public Module<ApplyingCalibrator, Requires<CurrentImage>, Provides<CalibrationStatus>, Cadence::Cognition> {
+ public:
+  explicit ApplyingCalibrator(const ModuleContext& = {}) {}
+  static inline int runs = 0;
+  static CameraCalibration solution() { return CameraCalibration{0.01, -0.02, 0.03, 0.035, -0.01, 0.02}; }
+
+ private:
+  void update() override {
+    if (++runs < 5) return;
+    out<CalibrationStatus>().appliedId = 1;
+    out<CalibrationStatus>().applied = solution();
+  }
+};
+NAO_REGISTER_MODULE(ApplyingCalibrator);
 
 // For the threaded form: a behaviour slower than the camera. Each run records how many answers
 // motion sent meanwhile and the newest motion cycle in the exchange it got with the image.
@@ -351,6 +371,66 @@ TEST(FrameHistoryProvider, ImuAngleAtAnImageTimeIsInterpolated) {
   ASSERT_TRUE(h.get<FrameHistory>().imuAngleAt(100, a));  // after the history: the newest
   EXPECT_NEAR(a.x(), 0.09, 1e-12);
   EXPECT_FALSE(FrameHistory{}.imuAngleAt(0, a));
+}
+
+TEST(CameraCalibrationProvider, StartsFromTheProgramsAndAdoptsAnAppliedSolution) {
+  ModuleContext context;
+  const CameraCalibration stored{0, 0, 0.01, 0, 0, 0};
+  context.params["CameraCalibrationProvider"] = stored;
+  ModuleHarness h("CameraCalibrationProvider", context);
+  CalibrationStatus status;
+  EXPECT_EQ(h.fix(status).run().get<CameraCalibration>().toArray(), stored.toArray());
+  status.solutionId = 3;  // solved, not applied: nothing changes
+  status.applied = ApplyingCalibrator::solution();
+  EXPECT_EQ(h.fix(status).run().get<CameraCalibration>().toArray(), stored.toArray());
+  status.appliedId = 1;
+  EXPECT_EQ(h.fix(status).run().get<CameraCalibration>().toArray(), ApplyingCalibrator::solution().toArray());
+  status = CalibrationStatus{};  // cleared (a new challenge mode): the one in use stays
+  EXPECT_EQ(h.fix(status).run().get<CameraCalibration>().toArray(), ApplyingCalibrator::solution().toArray());
+}
+
+// The calibrator's applied solution reaches motion's camera matrices on the next cycle and the
+// cognition's camera matrix from the next image on.
+TEST(CameraCalibrationProvider, AnAppliedCalibrationReachesBothCadences) {
+  ApplyingCalibrator::runs = 0;
+  RobotProgramConfig config;
+  config.providers = {{"CalibrationStatus", "ApplyingCalibrator"}};
+  RobotProgram program(config);
+  TurningHeadBackend backend;
+  backend.cycles = 1;
+  double fifthImage = -1;
+  while (true) {
+    backend.cycles += 1;
+    if (!program.cycle(backend)) break;
+    const auto& m = program.cognitionBoard().has<ImageCameraMatrix>() ? &program.cognitionBoard().read<ImageCameraMatrix>()
+                                                                       : nullptr;
+    if (ApplyingCalibrator::runs == 4 && m) {
+      // Before the solution: the factory calibration.
+      const JointArray joints = postureAt(m->timestamp);
+      const CameraMatrix factory = computeCameraMatrix(joints, robotToTorso(joints, 0.01, 0.05), CameraId::Top,
+                                                       CameraCalibration{}, CameraIntrinsics::fromFovY(64, 48));
+      EXPECT_LT((m->matrix.pose.matrix() - factory.pose.matrix()).norm(), 1e-9);
+    }
+    if (ApplyingCalibrator::runs == 5 && fifthImage < 0) {
+      fifthImage = m->timestamp;
+      // Motion switches in the next cycle (the status crosses after this image's cognition).
+      EXPECT_EQ(program.blackboard().read<CameraCalibration>().toArray(), CameraCalibration{}.toArray());
+    }
+    if (ApplyingCalibrator::runs == 6) break;
+  }
+  ASSERT_GT(fifthImage, 0);
+  EXPECT_EQ(program.blackboard().read<CameraCalibration>().toArray(), ApplyingCalibrator::solution().toArray());
+  const auto& m = program.cognitionBoard().read<ImageCameraMatrix>();
+  const JointArray joints = postureAt(m.timestamp);
+  const CameraMatrix want = computeCameraMatrix(joints, robotToTorso(joints, 0.01, 0.05), CameraId::Top,
+                                                ApplyingCalibrator::solution(), CameraIntrinsics::fromFovY(64, 48));
+  EXPECT_LT((m.matrix.pose.matrix() - want.pose.matrix()).norm(), 1e-9);
+  // Motion's own camera matrix of the cycle uses it too.
+  const SensorFrame& f = program.blackboard().read<SensorFrame>();
+  const CameraMatrix motionWant = computeCameraMatrix(f.joints.position, robotToTorso(f.joints.position, 0.01, 0.05),
+                                                      CameraId::Top, ApplyingCalibrator::solution(),
+                                                      program.blackboard().read<CameraMatrices>().matrix[0].intrinsics);
+  EXPECT_LT((program.blackboard().read<CameraMatrices>().matrix[0].pose.matrix() - motionWant.pose.matrix()).norm(), 1e-9);
 }
 
 TEST(ExposureCameraMatrixProvider, InvalidWithoutHistoryOrImage) {

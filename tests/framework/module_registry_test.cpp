@@ -63,7 +63,8 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "CameraMatrixProvider",
+  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "CameraCalibrationProvider",
+                                     "CameraMatrixProvider",
                                      "CameraVision", "ChallengeModeProvider", "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
                                      "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "OwnBodyProvider",
                                      "SelfLocalization", "TorsoMatrixProvider"}));
@@ -113,7 +114,8 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
   RobotProgram program;
   // Motion in dependency order, then cognition.
   EXPECT_EQ(program.moduleOrder(),
-            (Names{"ButtonStateProvider", "TorsoMatrixProvider", "CameraMatrixProvider", "ChallengeModeProvider",
+            (Names{"ButtonStateProvider", "CameraCalibrationProvider", "TorsoMatrixProvider", "CameraMatrixProvider",
+                   "ChallengeModeProvider",
                    "FallDetector", "HeadControl",
                    "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
                    "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl"}));
