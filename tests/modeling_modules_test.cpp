@@ -13,6 +13,7 @@
 #include "controllers/modules/CameraVision.h"
 #include "controllers/modules/SelfLocalization.h"
 #include "perception/CameraModel.h"
+#include "perception/OwnBody.h"
 #include "robot/Paths.h"
 #include "tests/support/ModuleHarness.h"
 
@@ -303,7 +304,7 @@ TEST(CameraVisionModule, AnImpossibleCameraMatrixIsSkippedNotSeenThrough) {
   m.valid = true;
   m.matrix = bottomCamera();
   m.matrix.intrinsics = CameraIntrinsics::fromFovY(image.width, image.height);
-  h.fix(current).fix(m).run();
+  h.fix(current).fix(m).fix(OwnBody{}).run();
   EXPECT_TRUE(h.get<CameraPercepts>().processed);
   // Under the ground, NaN, not a rotation: each refused, the percept set marked unprocessed.
   for (int k = 0; k < 3; ++k) {

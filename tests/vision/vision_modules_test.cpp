@@ -258,18 +258,23 @@ TEST(BallPerceptor, FindsTheBallWhereItLies) {
   const Upstream up(image, cm);
   ModuleHarness h = harness<modules::BallPerceptor>();
   up.fixInto<CameraImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry>(h);
-  h.run();
-  const BallPercept& b = h.get<BallPercept>();
+  h.fix(OwnBody{}).run();
+  const BallPercept b = h.get<BallPercept>();
   ASSERT_TRUE(b.seen);
   EXPECT_LT((b.position - ball).norm(), 0.05 * ball.norm());
   EXPECT_LT((b.image - *cm.project(Eigen::Vector3d(ball.x(), ball.y(), test::kSyntheticBallRadius))).norm(), 3.0);
+  // The robot's own body in front of it (a capsule across the ray to the ball): refused.
+  OwnBody body;
+  const Eigen::Vector3d onRay = cm.pose.translation() + 0.3 * cm.pixelRay(b.image).normalized();
+  body.parts.push_back({onRay - Eigen::Vector3d(0, 0.05, 0), onRay + Eigen::Vector3d(0, 0.05, 0), 0.03});
+  EXPECT_FALSE(h.fix(body).run().get<BallPercept>().seen);
   // The same image without the ball: none.
   const CameraImage empty = test::syntheticImage(cm, {}, test::kNoPaint);
   const Upstream upEmpty(empty, cm);
   ModuleHarness h2 = harness<modules::BallPerceptor>();
   upEmpty.fixInto<CameraImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry>(
       h2);
-  EXPECT_FALSE(h2.run().get<BallPercept>().seen);
+  EXPECT_FALSE(h2.fix(OwnBody{}).run().get<BallPercept>().seen);
 }
 
 TEST(LineSpotProvider, SpotsOnThePaintAndNoneInTheBall) {
