@@ -27,21 +27,17 @@ struct FrameHistory {
   // False when the history is empty.
   bool at(double t, JointArray& joints, Eigen::Isometry3d& robotToTorso) const {
     if (entries.empty()) return false;
-    std::size_t i = 1;
-    while (i < entries.size() && entries[i].time < t) ++i;
-    if (i == entries.size() || t <= entries.front().time) {
-      const Entry& e = t <= entries.front().time ? entries.front() : entries.back();
-      joints = e.joints;
-      robotToTorso = e.robotToTorso;
+    const Bracket k = bracket(t);
+    if (k.a == k.b) {
+      joints = k.a->joints;
+      robotToTorso = k.a->robotToTorso;
       return true;
     }
-    const Entry &a = entries[i - 1], &b = entries[i];
-    const double span = b.time - a.time;
-    const double s = span > 0 ? (t - a.time) / span : 1.0;
-    for (int j = 0; j < NumJoints; ++j) joints[j] = a.joints[j] + s * (b.joints[j] - a.joints[j]);
+    const Entry &a = *k.a, &b = *k.b;
+    for (int j = 0; j < NumJoints; ++j) joints[j] = a.joints[j] + k.s * (b.joints[j] - a.joints[j]);
     const Eigen::Quaterniond qa(a.robotToTorso.linear()), qb(b.robotToTorso.linear());
-    robotToTorso.linear() = qa.slerp(s, qb).toRotationMatrix();
-    robotToTorso.translation() = a.robotToTorso.translation() + s * (b.robotToTorso.translation() - a.robotToTorso.translation());
+    robotToTorso.linear() = qa.slerp(k.s, qb).toRotationMatrix();
+    robotToTorso.translation() = a.robotToTorso.translation() + k.s * (b.robotToTorso.translation() - a.robotToTorso.translation());
     return true;
   }
 
@@ -49,16 +45,8 @@ struct FrameHistory {
   // image taken at t needs). False when the history is empty.
   bool imuAngleAt(double t, Eigen::Vector2d& angle) const {
     if (entries.empty()) return false;
-    std::size_t i = 1;
-    while (i < entries.size() && entries[i].time < t) ++i;
-    if (i == entries.size() || t <= entries.front().time) {
-      angle = (t <= entries.front().time ? entries.front() : entries.back()).imuAngle;
-      return true;
-    }
-    const Entry &a = entries[i - 1], &b = entries[i];
-    const double span = b.time - a.time;
-    const double s = span > 0 ? (t - a.time) / span : 1.0;
-    angle = a.imuAngle + s * (b.imuAngle - a.imuAngle);
+    const Bracket k = bracket(t);
+    angle = k.a == k.b ? k.a->imuAngle : Eigen::Vector2d(k.a->imuAngle + k.s * (k.b->imuAngle - k.a->imuAngle));
     return true;
   }
 
@@ -66,18 +54,33 @@ struct FrameHistory {
   // False when the history is empty.
   bool odometryAt(double t, Pose2& pose) const {
     if (entries.empty()) return false;
+    const Bracket k = bracket(t);
+    if (k.a == k.b) {
+      pose = k.a->odometry;
+      return true;
+    }
+    const Pose2 d = k.a->odometry.inverse() * k.b->odometry;
+    pose = k.a->odometry * Pose2(k.s * d.x, k.s * d.y, k.s * d.theta);
+    return true;
+  }
+
+ private:
+  // The entries around t and t's fraction between them; outside the span both are the nearest
+  // entry. The history must not be empty.
+  struct Bracket {
+    const Entry *a, *b;
+    double s;
+  };
+  Bracket bracket(double t) const {
     std::size_t i = 1;
     while (i < entries.size() && entries[i].time < t) ++i;
     if (i == entries.size() || t <= entries.front().time) {
-      pose = (t <= entries.front().time ? entries.front() : entries.back()).odometry;
-      return true;
+      const Entry* e = t <= entries.front().time ? &entries.front() : &entries.back();
+      return {e, e, 0.0};
     }
-    const Pose2 &a = entries[i - 1].odometry, &b = entries[i].odometry;
-    const double span = entries[i].time - entries[i - 1].time;
-    const double s = span > 0 ? (t - entries[i - 1].time) / span : 1.0;
-    const Pose2 d = a.inverse() * b;
-    pose = a * Pose2(s * d.x, s * d.y, s * d.theta);
-    return true;
+    const Entry &a = entries[i - 1], &b = entries[i];
+    const double span = b.time - a.time;
+    return {&a, &b, span > 0 ? (t - a.time) / span : 1.0};
   }
 };
 
