@@ -17,6 +17,8 @@
 // as a person holds a NAO that boots. The figures go to stdout (JSON); exit 0 when every check
 // passed (no late or missing answer, a clean stop). --sanitized (the ASan + UBSan build, whose
 // program and peer are several times slower): late answers are counted, not judged.
+#include <pthread.h>
+#include <sched.h>
 #include <signal.h>
 
 #include <chrono>
@@ -167,7 +169,7 @@ class RenderWorker {
     double stamp;
   };
   void loop() {
-    // The LoLA loop keeps the session's high priority; the renders take what is left.
+    // The renders at normal priority, below the LoLA loop (SCHED_FIFO where allowed): they take what is left.
     setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 0);
     std::unique_ptr<nao::sim::CameraRenderer> renderer;
     std::unique_lock<std::mutex> lock(mutex_);
@@ -275,6 +277,15 @@ int runPeer(const Options& o) {
   }
   Child child = spawn(args, dir + "/run.stderr");
   Peer peer(acceptClient(lolaListener, child), child);
+  // On a NAO, LoLA runs at SCHED_FIFO 20-30, above the program's motion cadence (10): packets go
+  // out and answers are taken on time whatever cognition does. The peer's LoLA loop does the same
+  // where allowed (root), so that its answer times measure the program, not the peer's own wait
+  // for a core held by its renders or the program's cognition. Set only now: the spawned program
+  // would inherit it (the render thread, started before, stays at normal priority).
+  sched_param rt{};
+  rt.sched_priority = 20;
+  const bool peerRealTime = pthread_setschedparam(pthread_self(), SCHED_FIFO, &rt) == 0;
+  std::fprintf(stderr, "sim_lola_peer: LoLA loop at %s\n", peerRealTime ? "SCHED_FIFO 20" : "normal priority (not root)");
 
   std::vector<Truth> truths;
   std::vector<double> latencyMs;
@@ -376,6 +387,7 @@ int runPeer(const Options& o) {
 
   nlohmann::json out = {{"seconds_simulated", o.seconds},
                         {"wall_s", wallS},
+                        {"peer_real_time", peerRealTime},
                         {"cycles_judged", latencyMs.size() + static_cast<std::size_t>(missing)},
                         {"late_answers", late},
                         {"missing_answers", missing},
