@@ -29,6 +29,7 @@
 #include "perception/vision/BallClassifier.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
+#include "representations/behavior/SpeechRequest.h"
 #include "representations/infrastructure/ChallengeMode.h"
 #include "representations/infrastructure/GameControllerData.h"
 #include "representations/infrastructure/SafetyState.h"
@@ -38,6 +39,7 @@
 #include "robot/nao/ImageFiles.h"
 #include "robot/nao/NaoBackend.h"
 #include "robot/nao/SocketCamera.h"
+#include "robot/nao/SpeechOutput.h"
 
 namespace nao::cli {
 namespace {
@@ -197,6 +199,9 @@ int runNao(const RunOptions& options) {
 
   NaoBackend::installSignalHandlers();
   GameController gameController(gcConfig, logLine);
+  // The robot's voice: each new SpeechRequest goes to the text-to-speech command, off this thread.
+  SpeechOutput speech(nao.speechCommand == "none" ? std::string() : nao.speechCommand, logLine);
+  int utterances = 0;
   NaoBackend backend(config, logLine);
   auto stopAfterSeconds = [&](double time) {
     if (!seconds || time < *seconds) return;
@@ -300,7 +305,7 @@ int runNao(const RunOptions& options) {
     if (!nao.lockstep) program->startCognitionThread();
     useRealTimePriority();
     GameState lastGame;
-    int lastChallengeId = 0;
+    int lastChallengeId = 0, lastSpeechId = 0;
     double time = first.time;
     double cpuStart = threadCpuMs();
     while (true) {
@@ -333,6 +338,11 @@ int runNao(const RunOptions& options) {
       if (bb.has<ChallengeMode>() && bb.read<ChallengeMode>().modeId != lastChallengeId) {
         lastChallengeId = bb.read<ChallengeMode>().modeId;
         logLine(std::string("challenge: ") + challengeModeName(bb.read<ChallengeMode>().mode) + " mode");
+      }
+      if (bb.has<SpeechRequest>() && bb.read<SpeechRequest>().id != lastSpeechId) {
+        lastSpeechId = bb.read<SpeechRequest>().id;
+        speech.say(bb.read<SpeechRequest>().text);
+        ++utterances;
       }
       const GameState& game = bb.read<GameState>();
       if (!game.fromGameController && (game.state != lastGame.state || game.penalty != lastGame.penalty))
@@ -415,6 +425,8 @@ int runNao(const RunOptions& options) {
         {"per_second", beliefs},
         {"clean_stop", backend.stoppedCleanly()},
         {"robot", {{"body_id", backend.robotInfo().bodyId}, {"head_id", backend.robotInfo().headId}}},
+        {"speech", {{"command", nao.speechCommand}, {"utterances", utterances}, {"spoken", speech.spoken()},
+                    {"failed", speech.failed()}}},
         {"game", {{"state", gc::stateName(g.state)}, {"penalised", g.penalised()},
                   {"from_gamecontroller", g.fromGameController}, {"rejected_packets", gameController.rejected()}}}};
     // CLOCK_MONOTONIC of the program's time 0: lines its times up with another clock.

@@ -95,6 +95,39 @@ void MotionEngine::applyHead(JointRequest& out, const HeadJointRequest& head) co
   out.stiffness[HeadYaw] = out.stiffness[HeadPitch] = head.stiffness;
 }
 
+std::array<double, 4> MotionEngine::raisedArm(ArmMotionRequest::Arm side) {
+  const double m = side == ArmMotionRequest::Arm::Left ? 1.0 : -1.0;  // the left arm mirrors the right one
+  return {-1.45, m * 0.15, -m * 1.57, -m * 0.05};
+}
+
+// The raised arm over the motion's own arm angles, blended in and out over armRaiseTime. Only
+// while the walk stands: a raised arm moves the centre of mass about a centimetre, which the
+// stand holds and the walk's balance does not plan for; walking (or any other motion) lowers it.
+// The other arm is asked for only once the first is down.
+void MotionEngine::applyArm(JointRequest& out, const SensorFrame& frame, const ArmMotionRequest& arm) {
+  const double dt = armLastTime_ < 0 ? 0.0 : std::clamp(frame.time - armLastTime_, 0.0, 0.1);
+  armLastTime_ = frame.time;
+  if (state_ != State::Walk) {  // the kick, the get-up, a fall, sitting: the motion owns the arms
+    armBlend_ = 0;
+    info_.armRaised = false;
+    return;
+  }
+  if (armBlend_ == 0 && arm.raise != ArmMotionRequest::Arm::None) armSide_ = arm.raise;
+  const bool up = walk_.standing() && arm.raise == armSide_;
+  const double step = params_.armRaiseTime > 0 ? dt / params_.armRaiseTime : 1.0;
+  armBlend_ = std::clamp(armBlend_ + (up ? step : -step), 0.0, 1.0);
+  const int first = armSide_ == ArmMotionRequest::Arm::Left ? LShoulderPitch : RShoulderPitch;
+  const std::array<double, 4> raised = raisedArm(armSide_);
+  const double s = smoothstep(armBlend_);
+  bool reached = armBlend_ == 1.0;
+  for (int k = 0; k < 4; ++k) {
+    const int j = first + k;
+    out.position[j] += s * (raised[k] - out.position[j]);
+    reached = reached && std::abs(frame.joints.position[j] - raised[k]) < 0.1;
+  }
+  info_.armRaised = reached;
+}
+
 // WalkTo: the remaining offset to the target in the odometry frame, turned into a walk speed.
 // Far away the robot faces its path (forward is the fastest) and slows down in time to stop
 // (v <= sqrt(2 a d)); near, it turns to the target's heading and steps there
@@ -134,7 +167,7 @@ Pose2 MotionEngine::walkToSpeed(const Pose2& target, double positionTolerance, d
 }
 
 JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fall, const MotionRequest& request,
-                                  const HeadJointRequest& head) {
+                                  const HeadJointRequest& head, const ArmMotionRequest& arm) {
   info_.motion = request.motion;
   info_.kickDone = request.kickId == doneKickId_;
   JointRequest out;
@@ -278,6 +311,7 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
   const bool headFree = state_ == State::Walk || state_ == State::Transition || state_ == State::Kick ||
                         state_ == State::Sitting || state_ == State::SitDown;
   if (headFree) applyHead(out, head);
+  applyArm(out, frame, arm);
 
   // Odometry: the walk's kinematic odometry while on the feet; the gyro's yaw otherwise.
   walk_.updateOdometry(frame, !(state_ == State::Walk || state_ == State::Transition || state_ == State::Kick));

@@ -13,6 +13,7 @@
 #include "controllers/GetUp.h"
 #include "controllers/Kick.h"
 #include "controllers/Walk.h"
+#include "representations/behavior/ArmMotionRequest.h"
 #include "representations/behavior/MotionRequest.h"
 #include "representations/motion/HeadJointRequest.h"
 #include "representations/motion/MotionInfo.h"
@@ -44,13 +45,17 @@ class MotionEngine {
     double walkToResumePosition = 2.5, walkToResumeAngle = 2.0;
     double kickPositionTolerance = 0.015;   // m: the kick pose reached (the kick corrects the rest)
     double kickAngleTolerance = 0.06;       // rad
+    double armRaiseTime = 0.6;              // s, down to up (and back)
   };
 
   MotionEngine() : MotionEngine(Params{}) {}
   explicit MotionEngine(const Params& params);
 
   JointRequest update(const SensorFrame& frame, const FallState& fall, const MotionRequest& request,
-                      const HeadJointRequest& head = {});
+                      const HeadJointRequest& head = {}, const ArmMotionRequest& arm = {});
+  // The raised arm's joint angles (ShoulderPitch, ShoulderRoll, ElbowYaw, ElbowRoll): up above
+  // the head, slightly outwards, palm inwards.
+  static std::array<double, 4> raisedArm(ArmMotionRequest::Arm side);
 
   const MotionInfo& info() const { return info_; }
   const Odometry& odometry() const { return odometry_; }
@@ -74,6 +79,7 @@ class MotionEngine {
   Pose2 kickPose(const Eigen::Vector2d& ball, double direction, bool leftFoot) const;
   bool wantsFeet(const MotionRequest& request) const;
   void applyHead(JointRequest& out, const HeadJointRequest& head) const;
+  void applyArm(JointRequest& out, const SensorFrame& frame, const ArmMotionRequest& arm);
 
   Params params_;
   DebugChannels* debug_ = &DebugChannels::none();
@@ -95,6 +101,9 @@ class MotionEngine {
   int kickId_ = -1;
   bool kickLeft_ = true;
   int doneKickId_ = -1;
+  ArmMotionRequest::Arm armSide_ = ArmMotionRequest::Arm::Right;  // the arm raised or being lowered
+  double armBlend_ = 0;     // 0 down (the motion's own arm) .. 1 up
+  double armLastTime_ = -1;
 };
 
 }  // namespace nao

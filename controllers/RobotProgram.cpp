@@ -7,7 +7,9 @@
 #include <set>
 
 #include "controllers/modules/ModuleField.h"
+#include "representations/behavior/ArmMotionRequest.h"
 #include "representations/behavior/BehaviorCommand.h"
+#include "representations/behavior/SpeechRequest.h"
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameControllerData.h"
@@ -31,7 +33,7 @@ struct TypeList {};
 // operator's command. Cognition to motion: the behaviour's requests.
 using MotionToCognition =
     TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState, BehaviorCommand, ChallengeMode>;
-using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest, CalibrationStatus>;
+using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationStatus>;
 
 template <class T>
 void copyOne(const Blackboard& from, Blackboard& to) {
@@ -68,6 +70,8 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
 
   motionBoard_.write<MotionRequest>() = MotionRequest{};  // stand
   motionBoard_.write<HeadMotionRequest>() = HeadMotionRequest{};
+  motionBoard_.write<ArmMotionRequest>() = ArmMotionRequest{};
+  motionBoard_.write<SpeechRequest>() = SpeechRequest{};
   motionBoard_.write<GameControllerData>() = GameControllerData{};
   motionBoard_.write<SafetyState>() = SafetyState{};
   motionBoard_.write<BehaviorCommand>().goTo = config.goTo;
@@ -75,12 +79,11 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   // GameController said, the backend's safety, the operator's command), and the behaviour's
   // requests: copied from cognition when a cognition module provides them, else written by a
   // scenario, a test or the app.
-  motion_.inputs<SensorFrame, CameraImages, MotionRequest, HeadMotionRequest, GameControllerData, SafetyState,
-                 BehaviorCommand>();
-  std::set<std::type_index> motionHas = {typeid(SensorFrame),        typeid(CameraImages),
-                                         typeid(MotionRequest),      typeid(HeadMotionRequest),
-                                         typeid(GameControllerData), typeid(SafetyState),
-                                         typeid(BehaviorCommand)};
+  motion_.inputs<SensorFrame, CameraImages, MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest,
+                 GameControllerData, SafetyState, BehaviorCommand>();
+  std::set<std::type_index> motionHas = {typeid(SensorFrame),        typeid(CameraImages),     typeid(MotionRequest),
+                                         typeid(HeadMotionRequest),  typeid(ArmMotionRequest), typeid(SpeechRequest),
+                                         typeid(GameControllerData), typeid(SafetyState),      typeid(BehaviorCommand)};
   std::set<std::type_index> cognitionHas;
   for (const std::string& name : chosenModules(providers)) {
     std::unique_ptr<ModuleBase> m = createModule(name, context);

@@ -60,6 +60,8 @@ struct RobotProgramConfig {
   void withoutBehavior() {
     providers["MotionRequest"] = "";
     providers["HeadMotionRequest"] = "";
+    providers["ArmMotionRequest"] = "";
+    providers["SpeechRequest"] = "";
   }
 };
 

@@ -69,6 +69,7 @@ struct World::Impl {
     std::array<Eigen::Quaterniond, kNumCameras> cameraQuat0{};
     int imuSite = -1;
     std::array<int, 2> sole{};  // left, right
+    std::array<int, 2> hand{};  // left, right (bodies)
     std::array<int, NumFsr> fsrSite{};
     int gyroAdr = -1, accelAdr = -1;
     double mass = 0;
@@ -136,6 +137,7 @@ struct World::Impl {
     r.prefix = sim::robotPrefix(index);
     const auto name = [&](std::string_view n) { return r.prefix + std::string(n); };
     r.torso = find(mjOBJ_BODY, name("torso"), true);
+    r.hand = {find(mjOBJ_BODY, name("LHand"), true), find(mjOBJ_BODY, name("RHand"), true)};
     const int root = find(mjOBJ_JOINT, name("root"), true);
     if (m->jnt_type[root] != mjJNT_FREE || m->jnt_bodyid[root] != r.torso)
       throw Error(modelName, "joint '" + name("root") + "' must be the free joint of '" + name("torso") + "'");
@@ -652,6 +654,10 @@ double World::cameraFovY() const {
 
 Eigen::Vector3d World::ballPosition(int ball) const {
   return Eigen::Vector3d(impl_->d->xpos + 3 * impl_->ball(ball).body);
+}
+
+Eigen::Vector3d World::handPosition(int robot, bool left) const {
+  return Eigen::Vector3d(impl_->d->xpos + 3 * impl_->robot(robot).hand[left ? 0 : 1]);
 }
 
 Eigen::Vector3d World::ballVelocity(int ball) const {

@@ -90,6 +90,7 @@ class World {
   double cameraFovY() const;                             // rad
   Eigen::Vector3d ballPosition(int ball) const;
   Eigen::Vector3d ballVelocity(int ball) const;
+  Eigen::Vector3d handPosition(int robot, bool left) const;  // the hand body's origin (the wrist), field frame
 
  private:
   struct Impl;

@@ -2,3 +2,5 @@
 # sensors, judged in the simulator.
 nao_add_test(challenge_buttons_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/challenge_buttons_test.cpp
              LIBS nao_scenarios TIMEOUT 300)
+# Reports: the raised arm in the simulator (truth), the Report option, the NAO's speech command.
+nao_add_test(report_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/report_test.cpp LIBS nao_scenarios TIMEOUT 300)

@@ -10,6 +10,7 @@
 #include "controllers/StandController.h"
 #include "controllers/modules/ChallengeModeProvider.h"
 #include "perception/FieldDimensions.h"
+#include "representations/behavior/SpeechRequest.h"
 #include "representations/infrastructure/ChallengeMode.h"
 #include "robot/Paths.h"
 #include "sim/SimBackend.h"
@@ -59,6 +60,18 @@ TEST(ChallengeButtons, TheRefereesButtonsOnTheSimulatedRobot) {
   sim::World world(spec, 5);
   world.placeRobot(0, start, StandController::standPosture());
   sim::SimBackend backend(world, 0, true);
+  // The camera shield on: dark frames (cognition, and so the behaviour, runs per frame).
+  backend.setImageSource([&](CameraId cam, double time) {
+    const sim::CameraResolution res = world.cameraResolution(cam);
+    CameraImage img;
+    img.camera = cam;
+    img.width = res.width;
+    img.height = res.height;
+    img.timestamp = time;
+    img.yuyv.assign(static_cast<std::size_t>(res.width) * res.height * 2, 16);
+    for (std::size_t i = 1; i < img.yuyv.size(); i += 2) img.yuyv[i] = 128;
+    return img;
+  });
   RobotProgramConfig config;
   config.field = field;
   RobotProgram program(config);
@@ -74,9 +87,14 @@ TEST(ChallengeButtons, TheRefereesButtonsOnTheSimulatedRobot) {
   hold({}, 0.5);
   EXPECT_EQ(bb.read<ChallengeMode>().mode, ChallengeMode::Mode::None);
   EXPECT_EQ(bb.read<ChallengeMode>().modeId, 0);
+  EXPECT_EQ(bb.read<SpeechRequest>().id, 0) << "said '" << bb.read<SpeechRequest>().text << "' before any mode";
   hold({ChestButton, HeadFront}, 1.2);
   hold({}, 0.5);
   EXPECT_EQ(bb.read<ChallengeMode>().mode, ChallengeMode::Mode::Calibration);
+  // The behaviour acknowledges the mode aloud (the request crosses back to motion, where the
+  // backend's voice takes it).
+  EXPECT_EQ(bb.read<SpeechRequest>().text, "Calibration mode");
+  EXPECT_EQ(bb.read<SpeechRequest>().id, 1);
   EXPECT_EQ(bb.read<ChallengeMode>().modeId, 1);
   EXPECT_NEAR(bb.read<ChallengeMode>().since, 1.0 + 0.9 + 0.5 + 1.0, 0.05);  // when the hold reached 1 s
   hold({HeadMiddle}, 0.2);
@@ -86,6 +104,8 @@ TEST(ChallengeButtons, TheRefereesButtonsOnTheSimulatedRobot) {
   hold({}, 0.5);
   EXPECT_EQ(bb.read<ChallengeMode>().mode, ChallengeMode::Mode::Evaluation);
   EXPECT_EQ(bb.read<ChallengeMode>().modeId, 2);
+  EXPECT_EQ(bb.read<SpeechRequest>().text, "Evaluation mode");
+  EXPECT_EQ(bb.read<SpeechRequest>().id, 2);
   EXPECT_EQ(bb.read<ChallengeMode>().headTaps, 0);
   const Eigen::Vector3d now = world.robotPose(0);
   EXPECT_LT((now.head<2>() - settled.head<2>()).norm(), 0.01);

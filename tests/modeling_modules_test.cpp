@@ -230,10 +230,33 @@ struct BehaviorFixture {
   BehaviorFixture() {
     pose.valid = true;
     pose.covariance = Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
-    h.fix(BallModel{}).fix(GameState{}).fix(FallState{}).fix(MotionInfo{}).fix(historyAt(1, Pose2()));
+    h.fix(BallModel{}).fix(GameState{}).fix(FallState{}).fix(MotionInfo{}).fix(historyAt(1, Pose2())).fix(ChallengeMode{});
   }
   void run(const RobotPose& p, const BehaviorCommand& c) { h.fix(p).fix(c).run(); }
 };
+
+TEST(BehaviorControlModule, SaysWhenTheRefereeStartsAChallengeMode) {
+  BehaviorFixture f;
+  RobotPose pose;
+  f.run(pose, BehaviorCommand{});
+  EXPECT_EQ(f.h.get<SpeechRequest>().id, 0);
+  ChallengeMode mode;
+  mode.mode = ChallengeMode::Mode::Calibration;
+  mode.modeId = 1;
+  f.h.fix(mode);
+  f.run(pose, BehaviorCommand{});
+  EXPECT_EQ(f.h.get<SpeechRequest>().text, "Calibration mode");
+  EXPECT_EQ(f.h.get<SpeechRequest>().id, 1);
+  f.run(pose, BehaviorCommand{});
+  EXPECT_EQ(f.h.get<SpeechRequest>().id, 1) << "said twice";
+  mode.mode = ChallengeMode::Mode::Evaluation;
+  mode.modeId = 2;
+  f.h.fix(mode);
+  f.run(pose, BehaviorCommand{});
+  EXPECT_EQ(f.h.get<SpeechRequest>().text, "Evaluation mode");
+  EXPECT_EQ(f.h.get<SpeechRequest>().id, 2);
+  EXPECT_EQ(f.h.get<ArmMotionRequest>().raise, ArmMotionRequest::Arm::None);  // no report: no arm
+}
 
 TEST(BehaviorControlModule, WalksToTheCommandedPoseInTheOdometryFrameAndKeepsItsTargetThroughJitter) {
   BehaviorFixture f;

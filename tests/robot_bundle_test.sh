@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # robot_bundle_test: the robot bundle that deploy.sh stages runs on an OS that is not the build
-# machine's. The bundle (nao-soccer-robot, its own dynamic loader, C library and libraries,
+# machine's. The bundle (nao-soccer-robot, nao-soccer-say, its own dynamic loader, C library and libraries,
 # config/, models/) is staged with `deploy.sh --dry-run`, copied to ROOT/home/nao/nao-soccer and
 # started in `chroot ROOT` through the bundle's loader, exactly as its start script does.
 # lola_peer (tests/lola_peer.cpp) plays LoLA on a socket inside ROOT/tmp: the ramp, 10 s of
@@ -27,6 +27,9 @@ start=$(date +%s.%N)
 
 mkdir -p "$tmp/build/bin"
 ln -s "$bin" "$tmp/build/bin/nao-soccer-robot"
+say="$(dirname "$bin")/nao-soccer-say"  # the voice, built beside the robot executable
+[ -x "$say" ] || fail "no $say (flite1-dev, .ci/install-deps.sh)"
+ln -s "$say" "$tmp/build/bin/nao-soccer-say"
 "$src/robot/deploy/deploy.sh" --dry-run --no-build --build-dir "$tmp/build" nao-test.invalid >"$tmp/deploy.out"
 stage="$tmp/build/deploy-stage"
 [ -x "$stage/lib/ld-linux-x86-64.so.2" ] || fail "the bundle has no loader"
@@ -85,4 +88,11 @@ grep -q 'not found' "$tmp/ldd.out" && fail "missing libraries: $(grep -m 3 'not 
 NAO_SOCCER_HOME="$inside" "$peer" --nao-soccer "$inside/bin/nao-soccer-robot" --soak 10 --chroot "$root" \
   --prefix "$inside/lib/ld-linux-x86-64.so.2" --prefix --argv0 --prefix "$inside/bin/nao-soccer-robot" \
   --json "$tmp/peer.json" || fail "the bundle did not pass the LoLA peer in the $mode root"
+# The voice in the root, through the bundle's loader: speech into a WAV file.
+mkdir -p "$root/tmp"
+rm -f "$root/tmp/said.$$.wav"
+chroot "$root" "$inside/lib/ld-linux-x86-64.so.2" "$inside/bin/nao-soccer-say" "Calibration finished" "/tmp/said.$$.wav" \
+  >"$tmp/say.out" 2>&1 || { cat "$tmp/say.out" >&2; fail "nao-soccer-say did not run in the $mode root"; }
+[ "$(head -c 4 "$root/tmp/said.$$.wav")" = RIFF ] || fail "nao-soccer-say wrote no WAV in the $mode root"
+rm -f "$root/tmp/said.$$.wav"
 echo "robot_bundle_test ($mode): passed in $(awk -v s="$start" -v e="$(date +%s.%N)" 'BEGIN {printf "%.1f", e - s}') s"

@@ -146,6 +146,13 @@ void CommandLine::declare() {
            "nao: deterministic, for replaying recorded LoLA packets and images: the program is built before the first "
            "answer, cognition runs in the motion cycle, file frames are due on the LoLA clock and waited for, no "
            "stale-sensor timeout (needs --clock lola and --cameras none or files:DIR)");
+    c.text("--speech-command", n.speechCommand, "CMD",
+           "nao: the text-to-speech command, each utterance appended as its last argument (default 'flite -t', shipped "
+           "in the bundle; 'none': the log only)",
+           [](const std::string& s) {
+             return s.find_first_not_of(" \t") == std::string::npos ? std::string("an empty command ('none' for none)")
+                                                                      : std::string();
+           });
     c.count("--team", n.team, 0, 254, "nao: team number for the GameController (0: none)");
     c.count("--player", n.player, 1, gc::kMaxPlayers, "nao: player number");
     c.count("--gc-port", n.gcPort, 1, 65535, "nao: GameController UDP port");
@@ -156,7 +163,7 @@ void CommandLine::declare() {
                {"--seed", "--lighting", "--miscalibration", "--model", "--pose", "--images", "--ball"});
     c.onlyWith("--backend", "nao", r.backend,
                {"--lola-socket", "--camera-top", "--camera-bottom", "--camera-settings", "--team", "--player",
-                "--gc-port", "--gc-return-port", "--gc-address", "--lockstep"});
+                "--gc-port", "--gc-return-port", "--gc-address", "--lockstep", "--speech-command"});
     c.rule([&r] {
       const bool simValue = r.cameras == "on" || r.cameras == "off";
       if (!r.cameras.empty() && simValue != (r.backend == "sim"))

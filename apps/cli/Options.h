@@ -36,6 +36,7 @@ struct NaoRunOptions {
   std::string gcAddress = "0.0.0.0";
   std::string clock = "monotonic";  // or "lola": 12 ms per LoLA packet
   bool lockstep = false;            // one packet at a time, deterministic (--lockstep)
+  std::string speechCommand = "flite -t";  // the text-to-speech command, the text appended ("none": log only)
 };
 
 struct RunOptions {

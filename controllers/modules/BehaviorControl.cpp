@@ -30,7 +30,8 @@ const char* lookStateName(behavior::LookActive::State s) {
 BehaviorControl::BehaviorControl(const ModuleContext& context)
     : params_(context.load<Params>(name())),
       goTo_(params_.goTo),
-      look_(std::make_unique<behavior::LookActive>(FieldModel::from(fieldFor(context)), params_.look)) {}
+      look_(std::make_unique<behavior::LookActive>(FieldModel::from(fieldFor(context)), params_.look)),
+      report_(params_.report) {}
 
 void BehaviorControl::update() {
   const FrameHistory& history = in<FrameHistory>();
@@ -46,12 +47,25 @@ void BehaviorControl::update() {
   else motion = MotionRequest{};  // stand
   HeadMotionRequest& head = out<HeadMotionRequest>();
   look_->run(input, head);
+  SpeechRequest& speech = out<SpeechRequest>();
+  const ChallengeMode& challenge = in<ChallengeMode>();
+  if (challenge.modeId != modeId_) {
+    modeId_ = challenge.modeId;
+    if (params_.acknowledgeModes && challenge.mode == ChallengeMode::Mode::Calibration)
+      behavior::say(speech, "Calibration mode");
+    else if (params_.acknowledgeModes && challenge.mode == ChallengeMode::Mode::Evaluation)
+      behavior::say(speech, "Evaluation mode");
+  }
+  report_.run(input, out<ArmMotionRequest>(), speech);
+  if (report_.active()) motion = MotionRequest{};  // a report is made standing
   debug(kBehavior, [&] {
     return nlohmann::json{{"go_to", input.command.goTo ? goToStateName(goTo_.state()) : "none"},
                           {"look", lookStateName(look_->state())},
                           {"motion", motionTypeName(motion.motion)},
                           {"walk_target", {motion.walkTarget.x, motion.walkTarget.y, motion.walkTarget.theta}},
-                          {"head_point", {head.point.x(), head.point.y()}}};
+                          {"head_point", {head.point.x(), head.point.y()}},
+                          {"challenge", challengeModeName(challenge.mode)},
+                          {"speech", {{"id", speech.id}, {"text", speech.text}}}};
   });
 }
 

@@ -2,14 +2,19 @@
 // Cognition: the behaviour. Options (controllers/behavior/, one per file, each a small state
 // machine) turn the models into the motion and head requests. The default behaviour: stand (the
 // motion engine gets up after a fall by itself), localize, look around actively, and walk to
-// the commanded field pose (BehaviorCommand::goTo) by the self-localization.
+// the commanded field pose (BehaviorCommand::goTo) by the self-localization. When the referee
+// starts a challenge mode (ChallengeMode), the robot says so.
 #include <memory>
 
 #include "controllers/behavior/GoToPose.h"
 #include "controllers/behavior/LookActive.h"
+#include "controllers/behavior/Report.h"
+#include "representations/behavior/ArmMotionRequest.h"
 #include "representations/behavior/BehaviorCommand.h"
 #include "representations/behavior/HeadMotionRequest.h"
 #include "representations/behavior/MotionRequest.h"
+#include "representations/behavior/SpeechRequest.h"
+#include "representations/infrastructure/ChallengeMode.h"
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameState.h"
 #include "representations/modeling/BallModel.h"
@@ -23,17 +28,21 @@ namespace nao::modules {
 
 class BehaviorControl
     : public Module<BehaviorControl,
-                    Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory>,
-                    Provides<MotionRequest, HeadMotionRequest>, Cadence::Cognition> {
+                    Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory,
+                             ChallengeMode>,
+                    Provides<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest>, Cadence::Cognition> {
  public:
   struct Params {
     behavior::GoToPose::Params goTo;
     behavior::LookActive::Params look;
+    behavior::Report::Params report;
+    bool acknowledgeModes = true;  // say "Calibration mode" / "Evaluation mode" when the referee starts one
   };
 
   explicit BehaviorControl(const ModuleContext& context = {});
   const behavior::GoToPose& goTo() const { return goTo_; }
   const behavior::LookActive& look() const { return *look_; }
+  const behavior::Report& report() const { return report_; }
 
  private:
   void update() override;
@@ -41,6 +50,8 @@ class BehaviorControl
   Params params_;
   behavior::GoToPose goTo_;
   std::unique_ptr<behavior::LookActive> look_;
+  behavior::Report report_;
+  int modeId_ = 0;  // the last ChallengeMode start acknowledged
 };
 
 }  // namespace nao::modules
@@ -50,5 +61,7 @@ template <class V>
 void describe(V& v, modules::BehaviorControl::Params& p) {
   v("goTo", p.goTo);
   v("look", p.look);
+  v("report", p.report);
+  v("acknowledgeModes", p.acknowledgeModes);
 }
 }  // namespace nao

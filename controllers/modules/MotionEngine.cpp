@@ -10,7 +10,8 @@ MotionEngine::MotionEngine(const ModuleContext& context) : engine_(context.load<
 
 void MotionEngine::update() {
   out<JointRequest>() =
-      engine_.update(in<SensorFrame>(), in<FallState>(), in<MotionRequest>(), in<HeadJointRequest>());
+      engine_.update(in<SensorFrame>(), in<FallState>(), in<MotionRequest>(), in<HeadJointRequest>(),
+                     in<ArmMotionRequest>());
   out<MotionInfo>() = engine_.info();
   out<Odometry>() = engine_.odometry();
 }

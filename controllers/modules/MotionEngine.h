@@ -3,6 +3,7 @@
 // the odometry and what the motion does (controllers/MotionEngine.h does the work).
 #include "controllers/MotionEngine.h"
 #include "controllers/modules/MotionEngineParams.h"
+#include "representations/behavior/ArmMotionRequest.h"
 #include "representations/behavior/MotionRequest.h"
 #include "representations/motion/HeadJointRequest.h"
 #include "representations/motion/MotionInfo.h"
@@ -15,7 +16,7 @@
 
 namespace nao::modules {
 
-class MotionEngine : public Module<MotionEngine, Requires<SensorFrame, FallState, MotionRequest, HeadJointRequest>,
+class MotionEngine : public Module<MotionEngine, Requires<SensorFrame, FallState, MotionRequest, HeadJointRequest, ArmMotionRequest>,
                                    Provides<JointRequest, MotionInfo, Odometry>> {
  public:
   explicit MotionEngine(const ModuleContext& context = {});

@@ -144,6 +144,7 @@ void describe(V& v, MotionEngine::Params& p) {
   v("walkToResumeAngle", p.walkToResumeAngle, 1.0, 100.0);
   v("kickPositionTolerance", p.kickPositionTolerance, 1e-4, 0.5);
   v("kickAngleTolerance", p.kickAngleTolerance, 1e-4, 1.0);
+  v("armRaiseTime", p.armRaiseTime, 0.1, 5.0);
 }
 
 }  // namespace nao

@@ -12,6 +12,7 @@ struct MotionInfo {
   bool kickDone = false;       // Kick: the kick with the current kickId is over
   bool upright = true;         // not fallen (after a get-up: true again)
   int getUpAttempts = 0;
+  bool armRaised = false;      // the requested arm is up (its measured joints near the raised pose)
   Pose2 walkSpeed;             // the speed the walk applies now (after its limits and ramps)
 };
 

@@ -61,9 +61,12 @@ if [ "$do_build" = 1 ]; then
   cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DNAO_ROBOT_CPU=silvermont \
     "-DCMAKE_CXX_FLAGS=-march=silvermont -mtune=silvermont" ${toolchain:+-DCMAKE_TOOLCHAIN_FILE="$toolchain"} >/dev/null
   cmake --build "$build_dir" --target nao-soccer-robot -j2
+  # The voice, where flite1-dev is installed (apps/CMakeLists.txt).
+  cmake --build "$build_dir" --target nao-soccer-say -j2 >/dev/null 2>&1 || true
 fi
 binary="$build_dir/bin/nao-soccer-robot"
 [ -x "$binary" ] || die "$binary: not built (drop --no-build)"
+say="$build_dir/bin/nao-soccer-say"
 
 # The folder the robot gets, exactly: ~/nao-soccer = NAO_SOCCER_HOME.
 stage="$build_dir/deploy-stage"
@@ -73,6 +76,11 @@ cp "$binary" "$stage/bin/nao-soccer-robot"
 # The ball classifier's weights (perception/vision/BallClassifier.h).
 cp "$root/models/vision/ball_classifier.yml" "$stage/models/vision/"
 cp "$root/robot/deploy/nao-soccer-start" "$stage/bin/"
+if [ -x "$say" ]; then
+  cp "$say" "$stage/bin/nao-soccer-say"
+else
+  echo "deploy: warning: no $say (flite1-dev, .ci/install-deps.sh): the robot will not speak" >&2
+fi
 cp "$root/robot/deploy/nao-soccer.service" "$stage/"
 cp "$field" "$stage/config/field_dimensions.json"
 # The module pipelines' providers (config/*modules.json) and the modules' parameters (with
@@ -94,6 +102,12 @@ if [ "$bundle" = 1 ] && [ -z "$toolchain" ]; then
   awk '/=> \// {print $3}' "$stage/lib/.ldd" | while read -r lib; do cp -L "$lib" "$stage/lib/"; done
   if grep -q 'not found' "$stage/lib/.ldd"; then die "$binary: $(grep -m 1 'not found' "$stage/lib/.ldd" | xargs)"; fi
   rm "$stage/lib/.ldd"
+  # The voice (nao-soccer-say: flite with one voice), run through the same loader.
+  if [ -x "$say" ]; then
+    ldd "$say" | awk '/=> \// {print $3}' | while read -r lib; do
+      [ -f "$stage/lib/$(basename "$lib")" ] || cp -L "$lib" "$stage/lib/"
+    done
+  fi
   # Debug sections are not needed on the robot (the build tree keeps the unstripped program).
   strip --strip-debug "$stage/lib/"*.so* 2>/dev/null || true
 fi

@@ -43,7 +43,7 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
   EXPECT_EQ(camera.provided, (Names{"CameraMatrices"}));
   EXPECT_EQ(camera.cadence, Cadence::Motion);
   const ModuleInfo& motion = *findInfo(all, "MotionEngine");
-  EXPECT_EQ(motion.required, (Names{"SensorFrame", "FallState", "MotionRequest", "HeadJointRequest"}));
+  EXPECT_EQ(motion.required, (Names{"SensorFrame", "FallState", "MotionRequest", "HeadJointRequest", "ArmMotionRequest"}));
   EXPECT_EQ(motion.provided, (Names{"JointRequest", "MotionInfo", "Odometry"}));
   EXPECT_EQ(findInfo(all, "HeadControl")->required, (Names{"SensorFrame", "HeadMotionRequest", "TorsoState"}));
   // Sorted by name, each once.

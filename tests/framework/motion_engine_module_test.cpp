@@ -1,5 +1,6 @@
 // MotionEngine alone, with servos that follow the request: it moves into the walk's stand
-// posture, applies the head's request, goes soft when the fall detector says the robot lies.
+// posture, applies the head's request, raises and lowers an arm over the stand, goes soft when
+// the fall detector says the robot lies.
 #include <gtest/gtest.h>
 
 #include "controllers/Walk.h"
@@ -27,7 +28,7 @@ ModuleHarness standingEngine() {
   f.fsr.weight.fill(4.5 / 8);
   HeadJointRequest head;
   head.yaw = 0.3;
-  h.fix(f).fix(FallState{}).fix(MotionRequest{}).fix(head);
+  h.fix(f).fix(FallState{}).fix(MotionRequest{}).fix(head).fix(ArmMotionRequest{});
   return h;
 }
 
@@ -66,13 +67,43 @@ TEST(MotionEngineModule, GoesSoftWhenTheRobotLies) {
   for (double s : h.get<JointRequest>().stiffness) EXPECT_LE(s, 0.5);
 }
 
+TEST(MotionEngineModule, RaisesTheRequestedArmOverTheStandAndLowersIt) {
+  ModuleHarness h = standingEngine(), plain = standingEngine();  // plain: the same stand, no arm
+  double t = 0, tPlain = 0;
+  runFor(h, 1.2, t);
+  runFor(plain, 1.2, tPlain);
+  const JointArray down = h.get<JointRequest>().position;
+  h.input<ArmMotionRequest>().raise = ArmMotionRequest::Arm::Left;
+  runFor(h, 0.3, t);  // half-way: moving, not there
+  EXPECT_LT(h.get<JointRequest>().position[LShoulderPitch], down[LShoulderPitch] - 0.3);
+  EXPECT_FALSE(h.get<MotionInfo>().armRaised);
+  runFor(h, 0.4, t);
+  runFor(plain, 0.7, tPlain);
+  const auto raised = nao::MotionEngine::raisedArm(ArmMotionRequest::Arm::Left);
+  const JointRequest& out = h.get<JointRequest>();
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(out.position[LShoulderPitch + k], raised[k], 1e-9) << k;
+  // The rest is the stand's own: the other arm exactly, the legs within the stand's balance.
+  const JointArray& stand = plain.get<JointRequest>().position;
+  for (int j = RShoulderPitch; j <= RWristYaw; ++j) EXPECT_NEAR(out.position[j], stand[j], 1e-9) << j;
+  for (int j : {LHipPitch, LKneePitch, LAnklePitch, RHipPitch, RKneePitch, RAnklePitch})
+    EXPECT_NEAR(out.position[j], stand[j], 0.02) << j;
+  EXPECT_TRUE(h.get<MotionInfo>().armRaised);
+  EXPECT_GT(raised[1], 0);  // the left arm's roll is outwards, the right one mirrors it
+  EXPECT_NEAR(nao::MotionEngine::raisedArm(ArmMotionRequest::Arm::Right)[1], -raised[1], 1e-12);
+  h.input<ArmMotionRequest>().raise = ArmMotionRequest::Arm::None;
+  runFor(h, 0.7, t);
+  runFor(plain, 0.7, tPlain);
+  EXPECT_FALSE(h.get<MotionInfo>().armRaised);
+  EXPECT_NEAR(h.get<JointRequest>().position[LShoulderPitch], plain.get<JointRequest>().position[LShoulderPitch], 1e-9);
+}
+
 TEST(MotionEngineModule, ParametersFromTheContext) {
   MotionEngine::Params p;
   p.transitionTime = 0.2;
   ModuleHarness h("MotionEngine", ModuleContext{"", "", {{"MotionEngine", p}}});
   SensorFrame f;
   f.fsr.weight.fill(4.5 / 8);
-  h.fix(f).fix(FallState{}).fix(MotionRequest{}).fix(HeadJointRequest{});
+  h.fix(f).fix(FallState{}).fix(MotionRequest{}).fix(HeadJointRequest{}).fix(ArmMotionRequest{});
   double t = 0;
   runFor(h, 0.3, t);  // past the shorter transition: the stand posture
   EXPECT_NEAR(h.get<JointRequest>().position[LKneePitch], Walk().standPosture()[LKneePitch], 0.05);
