@@ -153,6 +153,10 @@ int runNao(const RunOptions& options) {
   // --lockstep: a replay peer sends the next packet only after the answer, so a slow cycle
   // (the program's build, a sanitizer) is not a stale stream.
   if (nao.lockstep) config.staleCycles = 1000000;
+  // --clock lola (a simulator slower than real time): its physics stands still while it renders
+  // or the machine stalls, so a wall-time gap leaves no robot unattended; a dead peer is still
+  // noticed, after half a second.
+  else if (config.lolaClock) config.staleCycles = 42;
   config.camera[0].device = nao.cameraTop;
   config.camera[1].device = nao.cameraBottom;
   if (!nao.cameraSettings.empty()) applyCameraSettings(nao.cameraSettings, config.camera);
@@ -405,7 +409,8 @@ int runNao(const RunOptions& options) {
         {"late_answers", s.late},
         {"max_answer_ms", s.maxAnswerMs},
         {"mean_answer_ms", meanMs},
-        {"lola", {{"cycles", s.cycles}, {"answered", s.answered}, {"late", s.late}, {"cycle_ms_p99", p99Ms}}},
+        {"lola", {{"cycles", s.cycles}, {"answered", s.answered}, {"late", s.late}, {"cycle_ms_p99", p99Ms},
+                  {"late_answer_times", s.lateAnswers}}},
         {"cpu_ms_per_cycle", {{"mean", cpuMeanMs}, {"max", cpuMaxMs}}},
         {"images_processed", {{"top", processed[0]}, {"bottom", processed[1]}}},
         {"images_dropped", {{"top", dropped[0]}, {"bottom", dropped[1]}}},

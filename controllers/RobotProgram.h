@@ -62,6 +62,8 @@ struct RobotProgramConfig {
     providers["HeadMotionRequest"] = "";
     providers["ArmMotionRequest"] = "";
     providers["SpeechRequest"] = "";
+    providers["CalibrationRequest"] = "";
+    providers["CalibrationStatus"] = "";  // the calibrator acts on the behaviour's requests only
   }
 };
 

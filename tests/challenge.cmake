@@ -4,3 +4,5 @@ nao_add_test(challenge_buttons_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/challenge_
              LIBS nao_scenarios TIMEOUT 300)
 # Reports: the raised arm in the simulator (truth), the Report option, the NAO's speech command.
 nao_add_test(report_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/report_test.cpp LIBS nao_scenarios TIMEOUT 300)
+# The Calibrator module on rendered goal-box views of a robot with injected offsets.
+nao_add_test(calibrator_module_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrator_module_test.cpp LIBS nao_scenarios TIMEOUT 600)

@@ -58,6 +58,7 @@ void BehaviorControl::update() {
   }
   report_.run(input, out<ArmMotionRequest>(), speech);
   if (report_.active()) motion = MotionRequest{};  // a report is made standing
+  out<CalibrationRequest>() = CalibrationRequest{};  // the calibration behaviour (issue 20) asks here
   debug(kBehavior, [&] {
     return nlohmann::json{{"go_to", input.command.goTo ? goToStateName(goTo_.state()) : "none"},
                           {"look", lookStateName(look_->state())},

@@ -11,6 +11,7 @@
 #include "controllers/behavior/Report.h"
 #include "representations/behavior/ArmMotionRequest.h"
 #include "representations/behavior/BehaviorCommand.h"
+#include "representations/behavior/CalibrationRequest.h"
 #include "representations/behavior/HeadMotionRequest.h"
 #include "representations/behavior/MotionRequest.h"
 #include "representations/behavior/SpeechRequest.h"
@@ -30,7 +31,8 @@ class BehaviorControl
     : public Module<BehaviorControl,
                     Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory,
                              ChallengeMode>,
-                    Provides<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest>, Cadence::Cognition> {
+                    Provides<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationRequest>,
+                    Cadence::Cognition> {
  public:
   struct Params {
     behavior::GoToPose::Params goTo;

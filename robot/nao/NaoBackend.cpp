@@ -229,11 +229,15 @@ void NaoBackend::answerSoftInPlace() {
 }
 
 void NaoBackend::answered() {
-  const double answerMs = (now() - receivedAt_) * 1000;
+  const double answeredAt = now();
+  const double answerMs = (answeredAt - receivedAt_) * 1000;
   ++stats_.answered;
   stats_.maxAnswerMs = std::max(stats_.maxAnswerMs, answerMs);
   stats_.sumAnswerMs += answerMs;
-  if (answerMs > kCycleTime * 1000) ++stats_.late;
+  if (answerMs > kCycleTime * 1000) {
+    ++stats_.late;
+    if (stats_.lateAnswers.size() < 1000) stats_.lateAnswers.emplace_back(start_ + receivedAt_, start_ + answeredAt);
+  }
   auto& h = stats_.answerMsHistogram;
   ++h[std::min(h.size() - 1, static_cast<std::size_t>(std::max(0.0, answerMs) / 0.05))];
 }

@@ -78,6 +78,9 @@ class NaoBackend : public Backend {
                   dropped = 0;
     double maxAnswerMs = 0, sumAnswerMs = 0;
     std::array<std::uint32_t, 1001> answerMsHistogram{};  // 0.05 ms bins; the last: 50 ms and more
+    // The first late answers' packet arrival and answer (CLOCK_MONOTONIC s): a peer lines them
+    // up with what else held the machine up then.
+    std::vector<std::pair<double, double>> lateAnswers;
     // The answer time (ms from a packet's arrival to its answer) that q of the answers kept.
     double answerMsQuantile(double q) const;
   };

@@ -150,7 +150,7 @@ class TurningHeadBackend : public Backend {
 
 RobotProgramConfig withBehavior() {
   RobotProgramConfig c;
-  c.providers = {{"MotionRequest", "CountingBehavior"}, {"HeadMotionRequest", "CountingBehavior"}};
+  c.providers = {{"MotionRequest", "CountingBehavior"}, {"HeadMotionRequest", "CountingBehavior"}, {"ArmMotionRequest", ""}, {"SpeechRequest", ""}, {"CalibrationRequest", ""}, {"CalibrationStatus", ""}};
   return c;
 }
 
@@ -246,7 +246,7 @@ class PacedBackend : public TurningHeadBackend {
 
 TEST(CadenceThreads, MotionGoesOnWhileASlowCognitionRunsAndNewestImagesWin) {
   RobotProgramConfig config;
-  config.providers = {{"MotionRequest", "SlowBehavior"}, {"HeadMotionRequest", "SlowBehavior"}};
+  config.providers = {{"MotionRequest", "SlowBehavior"}, {"HeadMotionRequest", "SlowBehavior"}, {"ArmMotionRequest", ""}, {"SpeechRequest", ""}, {"CalibrationRequest", ""}, {"CalibrationStatus", ""}};
   RobotProgram program(config);
   PacedBackend backend;
   backend.cycles = 150;  // 0.6 s; an image every 3rd cycle (12 ms), cognition takes 60 ms each
@@ -298,7 +298,7 @@ TEST(CadenceThreads, WithoutImagesTheThreadIdlesAndStops) {
 
 TEST(CadenceThreads, ACognitionFailureEndsTheRunAtMotionsNextCycle) {
   RobotProgramConfig config;
-  config.providers = {{"MotionRequest", "ThrowingBehavior"}, {"HeadMotionRequest", ""}};
+  config.providers = {{"MotionRequest", "ThrowingBehavior"}, {"HeadMotionRequest", ""}, {"ArmMotionRequest", ""}, {"SpeechRequest", ""}, {"CalibrationRequest", ""}, {"CalibrationStatus", ""}};
   RobotProgram program(config);
   PacedBackend backend;
   backend.cycles = 100;

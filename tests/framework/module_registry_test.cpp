@@ -63,7 +63,8 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "CameraCalibrationProvider",
+  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "Calibrator",
+                                     "CameraCalibrationProvider",
                                      "CameraMatrixProvider",
                                      "CameraVision", "ChallengeModeProvider", "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
                                      "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "OwnBodyProvider",
@@ -118,7 +119,8 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
                    "ChallengeModeProvider",
                    "FallDetector", "HeadControl",
                    "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
-                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl"}));
+                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl",
+                   "Calibrator"}));
 }
 
 TEST(RobotProgram, AProviderRemovedByConfigurationBecomesAnInput) {
