@@ -79,7 +79,7 @@ cp "$root/robot/deploy/nao-soccer-start" "$stage/bin/"
 if [ -x "$say" ]; then
   cp "$say" "$stage/bin/nao-soccer-say"
 else
-  echo "deploy: warning: no $say (flite1-dev, .ci/install-deps.sh): the robot will not speak" >&2
+  echo "deploy: note: no $say (flite1-dev, .ci/install-deps.sh): the robot will not speak"
 fi
 cp "$root/robot/deploy/nao-soccer.service" "$stage/"
 cp "$field" "$stage/config/field_dimensions.json"
