@@ -14,6 +14,11 @@ namespace {
 NAO_DEBUG_CHANNEL(kCalibration, "calibration",
                   "the calibrator: each view's sample or why none, each solve, apply and verification");
 constexpr double kDeg = M_PI / 180;
+// Why an image was not taken because of motion (the next still image may do); one place for the words.
+constexpr const char* kNotStillYet = "not still long enough yet";
+constexpr const char* kHeadMoving = "head moving";
+constexpr const char* kTorsoMoving = "torso moving";
+bool isStillnessReason(const std::string& r) { return r == kNotStillYet || r == kHeadMoving || r == kTorsoMoving; }
 
 // The largest change of the head joints and of the torso's roll and pitch over [from, to].
 struct Motion {
@@ -67,11 +72,11 @@ calibration::ExtractionResult Calibrator::extract(const CameraImage& image, cons
   const FrameHistory& history = in<FrameHistory>();
   const Motion m = motionOver(history, image.timestamp - params_.stillSeconds, image.timestamp);
   if (!m.covered) {
-    r.reason = "not still long enough yet";
+    r.reason = kNotStillYet;
   } else if (m.joint > params_.stillJointRad) {
-    r.reason = "head moving";
+    r.reason = kHeadMoving;
   } else if (m.imu > params_.stillImuRad) {
-    r.reason = "torso moving";
+    r.reason = kTorsoMoving;
   }
   if (!r.reason.empty()) return r;
   JointArray joints{};
@@ -100,7 +105,7 @@ void Calibrator::update() {
       // The sample is measured against the uncalibrated zero: the solve estimates the offsets
       // from there.
       const calibration::ExtractionResult r = extract(image, CameraCalibration{});
-      if (!r.sample && (r.reason == "not still long enough yet" || r.reason == "head moving" || r.reason == "torso moving")) {
+      if (!r.sample && isStillnessReason(r.reason)) {
         status.last.reason = r.reason;  // not this image; the next one may do
         break;
       }
