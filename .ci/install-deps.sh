@@ -15,6 +15,7 @@ packages=(
   libtinyxml2-dev        # MJCF scene assembly (prefixing robot copies)
   libgtest-dev           # tests
   rsync                  # robot/deploy/deploy.sh copies the robot bundle
+  liblapack-dev libblas-dev libgfortran-12-dev  # OpenCV's LAPACK calls, static in nao-soccer-robot
   flite1-dev             # the robot's voice in the bundle: nao-soccer-say (apps/robot/SayMain.cpp)
   debootstrap            # the Debian 11 root the robot bundle is tested in (tests/robot_bundle.cmake)
   qemu-user              # the robot executable on a CPU without AVX (tests/robot_bundle.cmake)
