@@ -25,6 +25,8 @@
 #include "representations/perception/CameraPercepts.h"
 #include "representations/modeling/RobotPose.h"
 #include "perception/calibration/CalibrationStore.h"
+#include "perception/calibration/Solver.h"
+#include "representations/perception/CalibrationStatus.h"
 #include "perception/FieldDimensions.h"
 #include "perception/vision/BallClassifier.h"
 #include "robot/Error.h"
@@ -138,6 +140,24 @@ CameraCalibration storedCalibration(const std::string& headId) {
     logLine(std::string("run: camera calibration not used: ") + e.what());
   }
   return {};
+}
+
+// Stores what the Calibrator applied (config/calibration/<head id>.json). A refused or failed
+// write is logged: the robot goes on with the applied offsets.
+void storeCalibration(const std::string& headId, const CalibrationStatus& status) {
+  try {
+    calibration::CalibrationRecord record;
+    record.offsets = status.applied;
+    record.rmsAngleDeg = status.rmsAngleDeg;
+    record.rmsDepthM = status.rmsDepthM;
+    record.samples = status.samples[0] + status.samples[1];
+    record.solver = calibration::solverName(calibration::SolverKind::GaussNewton);
+    record.converged = status.converged;
+    const calibration::SaveOutcome saved = calibration::CalibrationStore().save(headId, record);
+    logLine(saved.saved ? "calibration: stored " + saved.path : "calibration: not stored: " + saved.reason);
+  } catch (const std::exception& e) {
+    logLine(std::string("calibration: not stored: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -278,8 +298,16 @@ int runNao(const RunOptions& options) {
     });
     // The belief once a second of image time, for the JSON: pose and ball as cognition left them
     // after that image (the cognition thread writes, this one reads after it has stopped).
-    program->setCognitionObserver([&beliefs, &seen, next = 0.0](const CameraImage& image,
-                                                                 const Blackboard& cognition) mutable {
+    // A calibration the robot program applied (its Calibrator) is stored for this head, here in
+    // the cognition thread, never in the LoLA loop; the next start loads it.
+    const std::string storeHead = backend.robotInfo().headId;
+    program->setCognitionObserver([&beliefs, &seen, next = 0.0, storedId = 0, storeHead](
+                                      const CameraImage& image, const Blackboard& cognition) mutable {
+      if (cognition.has<CalibrationStatus>() && cognition.read<CalibrationStatus>().appliedId != storedId) {
+        const CalibrationStatus& c = cognition.read<CalibrationStatus>();
+        storedId = c.appliedId;
+        storeCalibration(storeHead, c);
+      }
       if (cognition.has<CameraPercepts>()) {
         const CameraPercepts& p = cognition.read<CameraPercepts>();
         PerceptTally& t = seen[static_cast<int>(p.camera)];

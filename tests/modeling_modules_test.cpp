@@ -6,7 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <set>
 
+#include "controllers/StandController.h"
 #include "controllers/behavior/LookActive.h"
 #include "controllers/modules/BallLocator.h"
 #include "controllers/modules/BehaviorControl.h"
@@ -14,6 +16,9 @@
 #include "controllers/modules/SelfLocalization.h"
 #include "perception/CameraModel.h"
 #include "perception/OwnBody.h"
+#include "perception/calibration/CalibrationViews.h"
+#include "representations/behavior/CalibrationRequest.h"
+#include "representations/perception/CalibrationStatus.h"
 #include "robot/Paths.h"
 #include "tests/support/ModuleHarness.h"
 
@@ -90,7 +95,7 @@ TEST(SelfLocalizationModule, FollowsARobotFromTheSideLineWithItsOdometryAndLines
   ModuleHarness h("SelfLocalization", fieldContext());
   std::mt19937 rng(5);
   Pose2 truth(-2.0, -3.0, M_PI / 2), odometry;
-  h.fix(GameState{});
+  h.fix(GameState{}).fix(ChallengeMode{});
   int images = 0, valid = 0;
   double worst = 0;
   const Pose2 step(0.006, 0, 0.002);  // per image: 0.18 m/s, 3.4 deg/s
@@ -117,7 +122,7 @@ TEST(SelfLocalizationModule, BadInputsAreSkippedAndTheFilterStaysFinite) {
   ModuleHarness h("SelfLocalization", fieldContext());
   std::mt19937 rng(7);
   const Pose2 truth(-2.0, -3.0, M_PI / 2);
-  h.fix(GameState{});
+  h.fix(GameState{}).fix(ChallengeMode{});
   auto& module = dynamic_cast<const modules::SelfLocalization&>(h.module());
   for (int i = 0; i < 120; ++i) {
     const double t = i / 30.0;
@@ -148,6 +153,7 @@ TEST(SelfLocalizationModule, BadInputsAreSkippedAndTheFilterStaysFinite) {
 TEST(SelfLocalizationModule, APenaltyEndsWithTheRobotAtThePenaltyMarkSideLines) {
   ModuleHarness h("SelfLocalization", fieldContext());
   GameState game;
+  h.fix(ChallengeMode{});
   h.fix(game).fix(perceptsAt(0)).fix(historyAt(0, Pose2())).run();
   game.penalty = gc::Penalty::PlayerPushing;
   h.fix(game).fix(perceptsAt(1)).run();
@@ -159,6 +165,31 @@ TEST(SelfLocalizationModule, APenaltyEndsWithTheRobotAtThePenaltyMarkSideLines) 
   for (const auto& hyp : hyps) {
     EXPECT_NEAR(hyp.mean.x(), markX, 0.01);
     EXPECT_NEAR(std::abs(hyp.mean.y()), field().halfWidth(), 0.01);
+  }
+}
+
+// A challenge start (the referee's buttons; the robot was placed at the start) forgets where
+// the robot was and puts it on the side lines in line with the own penalty mark, as the rules do.
+TEST(SelfLocalizationModule, AChallengeStartPutsTheRobotOnTheSideLinesAtThePenaltyMark) {
+  ModuleHarness h("SelfLocalization", fieldContext());
+  ChallengeMode mode;
+  h.fix(GameState{}).fix(mode);
+  // Localized somewhere else first: the centre of the field, from a sideline entry.
+  for (int i = 0; i < 3; ++i) h.fix(perceptsAt(i)).fix(historyAt(i, Pose2())).run();
+  const double markX = -field().halfLength() + field().dims.penaltyCrossDistance;
+  const auto& module = dynamic_cast<const modules::SelfLocalization&>(h.module());
+  bool elsewhere = false;
+  for (const auto& hyp : module.locator().hypotheses()) elsewhere |= std::abs(hyp.mean.x() - markX) > 0.5;
+  EXPECT_TRUE(elsewhere) << "the sideline entry's hypotheses should not all be at the penalty mark";
+  mode.mode = ChallengeMode::Mode::Calibration;
+  mode.modeId = 1;
+  h.fix(mode).fix(perceptsAt(3)).fix(historyAt(3, Pose2())).run();
+  const auto& hyps = module.locator().hypotheses();
+  ASSERT_EQ(hyps.size(), 2u);
+  for (const auto& hyp : hyps) {
+    EXPECT_NEAR(hyp.mean.x(), markX, 0.01);
+    EXPECT_NEAR(std::abs(hyp.mean.y()), field().halfWidth(), 0.01);
+    EXPECT_NEAR(hyp.mean.z(), hyp.mean.y() > 0 ? -M_PI / 2 : M_PI / 2, 0.01);  // facing into the field
   }
 }
 
@@ -230,10 +261,73 @@ struct BehaviorFixture {
   BehaviorFixture() {
     pose.valid = true;
     pose.covariance = Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
-    h.fix(BallModel{}).fix(GameState{}).fix(FallState{}).fix(MotionInfo{}).fix(historyAt(1, Pose2())).fix(ChallengeMode{});
+    h.fix(BallModel{}).fix(GameState{}).fix(FallState{}).fix(MotionInfo{}).fix(historyAt(1, Pose2())).fix(ChallengeMode{})
+        .fix(CameraCalibration{}).fix(CalibrationStatus{});
   }
   void run(const RobotPose& p, const BehaviorCommand& c) { h.fix(p).fix(c).run(); }
 };
+
+// In the calibration mode: from the start, walk to the own goal box's side on the start's side
+// line; there, turn and aim the head per view and ask the calibrator for each view's sample,
+// one view after the other as the calibrator answers; with all views in, ask for a solve.
+TEST(BehaviorControlModule, CalibratesViewByViewFromTheStart) {
+  BehaviorFixture f;
+  ChallengeMode mode;
+  mode.mode = ChallengeMode::Mode::Calibration;
+  mode.modeId = 1;
+  f.h.fix(mode);
+  const FieldDimensions& dims = field().dims;
+  double t = 1;
+  auto step = [&](const RobotPose& p, const MotionInfo& info, const CalibrationStatus& status) {
+    t += 1.0 / 30;
+    f.h.fix(historyAt(t, p.odometry)).fix(info).fix(status);
+    f.run(p, BehaviorCommand{});
+  };
+  RobotPose pose = f.pose;
+  pose.pose = Pose2(-3.2, -3.0, M_PI / 2);
+  pose.odometry = pose.pose;  // the odometry frame is the field frame here
+  CalibrationStatus status;
+  MotionInfo walking;
+  for (int i = 0; i < 45; ++i) step(pose, walking, status);  // 1.5 s: localized, settled
+  const MotionRequest& walk = f.h.get<MotionRequest>();
+  ASSERT_EQ(walk.motion, MotionType::WalkTo);
+  const Eigen::Vector3d target = calibration::calibrationPosition(calibration::ownGoalBoxSide(dims, -1));
+  // The target in the odometry frame is the field target (odometry = field here).
+  EXPECT_NEAR(walk.walkTarget.x, target.x(), 1e-6);
+  EXPECT_NEAR(walk.walkTarget.y, target.y(), 1e-6);
+  EXPECT_EQ(f.h.get<CalibrationRequest>().action, CalibrationRequest::Action::Idle);
+  // Arrived: the views begin.
+  pose.pose = Pose2(target.x(), target.y(), target.z());
+  pose.odometry = pose.pose;
+  MotionInfo reached;
+  reached.walkToReached = true;
+  for (int i = 0; i < 30 && f.h.get<CalibrationRequest>().action != CalibrationRequest::Action::Collect; ++i)
+    step(pose, reached, status);
+  const std::vector<calibration::CalibrationView> views = calibration::planViews(
+      calibration::ownGoalBoxSide(dims, -1), target.head<2>(), StandController::standPosture());
+  std::vector<int> asked;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const CalibrationRequest& q = f.h.get<CalibrationRequest>();
+    ASSERT_EQ(q.action, CalibrationRequest::Action::Collect) << "view " << v;
+    EXPECT_EQ(q.camera, views[v].camera);
+    EXPECT_NEAR(f.h.get<HeadMotionRequest>().yaw, views[v].headYaw, 1e-9);
+    EXPECT_NEAR(f.h.get<HeadMotionRequest>().pitch, views[v].headPitch, 1e-9);
+    EXPECT_NEAR(Pose2::wrap(f.h.get<MotionRequest>().walkTarget.theta - views[v].robotPose.z()), 0, 1e-6);
+    asked.push_back(q.viewId);
+    // The calibrator answers: a sample.
+    status.last = {q.viewId, true, "", t};
+    ++status.samples[static_cast<int>(q.camera)];
+    for (int i = 0; i < 30; ++i) {
+      step(pose, reached, status);
+      if (f.h.get<CalibrationRequest>().action != CalibrationRequest::Action::Idle &&
+          f.h.get<CalibrationRequest>().viewId != q.viewId)
+        break;
+    }
+  }
+  EXPECT_EQ(std::set<int>(asked.begin(), asked.end()).size(), views.size()) << "one view id per view";
+  EXPECT_EQ(f.h.get<CalibrationRequest>().action, CalibrationRequest::Action::Solve);
+  EXPECT_EQ(f.h.get<MotionRequest>().motion, MotionType::Stand);
+}
 
 TEST(BehaviorControlModule, SaysWhenTheRefereeStartsAChallengeMode) {
   BehaviorFixture f;

@@ -1,5 +1,6 @@
 #include "controllers/modules/BehaviorControl.h"
 
+#include "controllers/StandController.h"
 #include "controllers/modules/ModuleField.h"
 #include "robot/ModuleRegistry.h"
 
@@ -13,6 +14,22 @@ const char* goToStateName(behavior::GoToPose::State s) {
     case behavior::GoToPose::State::WaitForPose: return "wait_for_pose";
     case behavior::GoToPose::State::Walk: return "walk";
     case behavior::GoToPose::State::Arrived: return "arrived";
+  }
+  return "?";
+}
+const char* calibrateStateName(behavior::CalibrateCameras::State s) {
+  using S = behavior::CalibrateCameras::State;
+  switch (s) {
+    case S::Localize: return "localize";
+    case S::GoToPosition: return "go_to_position";
+    case S::Turn: return "turn";
+    case S::Aim: return "aim";
+    case S::Collect: return "collect";
+    case S::Solve: return "solve";
+    case S::Apply: return "apply";
+    case S::Verify: return "verify";
+    case S::Report: return "report";
+    case S::Done: return "done";
   }
   return "?";
 }
@@ -31,7 +48,9 @@ BehaviorControl::BehaviorControl(const ModuleContext& context)
     : params_(context.load<Params>(name())),
       goTo_(params_.goTo),
       look_(std::make_unique<behavior::LookActive>(FieldModel::from(fieldFor(context)), params_.look)),
-      report_(params_.report) {}
+      report_(params_.report),
+      calibrate_(std::make_unique<behavior::CalibrateCameras>(fieldFor(context), StandController::standPosture(),
+                                                              params_.calibrate)) {}
 
 void BehaviorControl::update() {
   const FrameHistory& history = in<FrameHistory>();
@@ -43,11 +62,10 @@ void BehaviorControl::update() {
                                       in<MotionInfo>(),
                                       in<BehaviorCommand>()};
   MotionRequest& motion = out<MotionRequest>();
-  if (input.command.goTo) goTo_.run(input, *input.command.goTo, motion);
-  else motion = MotionRequest{};  // stand
   HeadMotionRequest& head = out<HeadMotionRequest>();
-  look_->run(input, head);
   SpeechRequest& speech = out<SpeechRequest>();
+  CalibrationRequest& calibration = out<CalibrationRequest>();
+  calibration = CalibrationRequest{};
   const ChallengeMode& challenge = in<ChallengeMode>();
   if (challenge.modeId != modeId_) {
     modeId_ = challenge.modeId;
@@ -55,10 +73,25 @@ void BehaviorControl::update() {
       behavior::say(speech, "Calibration mode");
     else if (params_.acknowledgeModes && challenge.mode == ChallengeMode::Mode::Evaluation)
       behavior::say(speech, "Evaluation mode");
+    if (challenge.mode == ChallengeMode::Mode::Calibration) calibrate_->restart(input.time);
+  }
+  const bool calibrating = challenge.mode == ChallengeMode::Mode::Calibration;
+  if (calibrating) {
+    behavior::CalibrateCameras::Output c =
+        calibrate_->run(input, in<Previous<CalibrationStatus>>(), in<CameraCalibration>());
+    motion = c.motion;
+    calibration = c.calibration;
+    if (c.lookActive) look_->run(input, head);
+    else head = c.head;
+    if (!c.report.empty()) report_.start(c.report, input.time);
+  } else {
+    if (input.command.goTo) goTo_.run(input, *input.command.goTo, motion);
+    else motion = MotionRequest{};  // stand
+    look_->run(input, head);
   }
   report_.run(input, out<ArmMotionRequest>(), speech);
   if (report_.active()) motion = MotionRequest{};  // a report is made standing
-  out<CalibrationRequest>() = CalibrationRequest{};  // the calibration behaviour (issue 20) asks here
+  if (calibrating && report_.state() == behavior::Report::State::Done) calibrate_->reported(input.time);
   debug(kBehavior, [&] {
     return nlohmann::json{{"go_to", input.command.goTo ? goToStateName(goTo_.state()) : "none"},
                           {"look", lookStateName(look_->state())},
@@ -66,6 +99,8 @@ void BehaviorControl::update() {
                           {"walk_target", {motion.walkTarget.x, motion.walkTarget.y, motion.walkTarget.theta}},
                           {"head_point", {head.point.x(), head.point.y()}},
                           {"challenge", challengeModeName(challenge.mode)},
+                          {"calibrate", calibrating ? calibrateStateName(calibrate_->state()) : "none"},
+                          {"calibration_request", calibrationActionName(calibration.action)},
                           {"speech", {{"id", speech.id}, {"text", speech.text}}}};
   });
 }

@@ -3,9 +3,12 @@
 // machine) turn the models into the motion and head requests. The default behaviour: stand (the
 // motion engine gets up after a fall by itself), localize, look around actively, and walk to
 // the commanded field pose (BehaviorCommand::goTo) by the self-localization. When the referee
-// starts a challenge mode (ChallengeMode), the robot says so.
+// starts a challenge mode (ChallengeMode), the robot says so; in the calibration mode it
+// calibrates its cameras (CalibrateCameras, talking to the Calibrator through
+// CalibrationRequest and the status the Calibrator left in the last run).
 #include <memory>
 
+#include "controllers/behavior/CalibrateCameras.h"
 #include "controllers/behavior/GoToPose.h"
 #include "controllers/behavior/LookActive.h"
 #include "controllers/behavior/Report.h"
@@ -21,7 +24,9 @@
 #include "representations/modeling/BallModel.h"
 #include "representations/modeling/RobotPose.h"
 #include "representations/motion/MotionInfo.h"
+#include "representations/perception/CalibrationStatus.h"
 #include "representations/perception/FallState.h"
+#include "perception/CameraCalibration.h"
 #include "robot/Module.h"
 #include "robot/Parameters.h"
 
@@ -30,7 +35,7 @@ namespace nao::modules {
 class BehaviorControl
     : public Module<BehaviorControl,
                     Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory,
-                             ChallengeMode>,
+                             ChallengeMode, CameraCalibration, Previous<CalibrationStatus>>,
                     Provides<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationRequest>,
                     Cadence::Cognition> {
  public:
@@ -38,6 +43,7 @@ class BehaviorControl
     behavior::GoToPose::Params goTo;
     behavior::LookActive::Params look;
     behavior::Report::Params report;
+    behavior::CalibrateCameras::Params calibrate;
     bool acknowledgeModes = true;  // say "Calibration mode" / "Evaluation mode" when the referee starts one
   };
 
@@ -45,6 +51,7 @@ class BehaviorControl
   const behavior::GoToPose& goTo() const { return goTo_; }
   const behavior::LookActive& look() const { return *look_; }
   const behavior::Report& report() const { return report_; }
+  const behavior::CalibrateCameras& calibrate() const { return *calibrate_; }
 
  private:
   void update() override;
@@ -53,6 +60,7 @@ class BehaviorControl
   behavior::GoToPose goTo_;
   std::unique_ptr<behavior::LookActive> look_;
   behavior::Report report_;
+  std::unique_ptr<behavior::CalibrateCameras> calibrate_;
   int modeId_ = 0;  // the last ChallengeMode start acknowledged
 };
 
@@ -64,6 +72,7 @@ void describe(V& v, modules::BehaviorControl::Params& p) {
   v("goTo", p.goTo);
   v("look", p.look);
   v("report", p.report);
+  v("calibrate", p.calibrate);
   v("acknowledgeModes", p.acknowledgeModes);
 }
 }  // namespace nao

@@ -27,9 +27,16 @@ double turnRate(const FrameHistory& history, double t) {
 SelfLocalization::SelfLocalization(const ModuleContext& context)
     : params_(context.load<Params>(name())), locator_(FieldModel::from(fieldFor(context)), params_.filter) {}
 
-void SelfLocalization::applySituation(const GameState& game) {
-  // The game situation decides the field's symmetry: where a robot is put on the field.
-  if (!started_) {
+void SelfLocalization::applySituation(const GameState& game, const ChallengeMode& challenge) {
+  // The game situation decides the field's symmetry: where a robot is put on the field. A
+  // challenge start (the calibration challenge's rules) puts it on a side line in line with the
+  // own penalty mark, facing into the field: the penalty return's two poses.
+  if (challenge.modeId != challengeModeId_) {
+    challengeModeId_ = challenge.modeId;
+    started_ = true;
+    locator_.resetToPenaltyReturn();
+    lastImageTime_.reset();  // the robot was carried there
+  } else if (!started_) {
     started_ = true;
     if (game.penalised()) locator_.resetToPenaltyReturn();
     else locator_.resetToSidelineEntry(true);
@@ -43,7 +50,7 @@ void SelfLocalization::applySituation(const GameState& game) {
 void SelfLocalization::update() {
   const CameraPercepts& percepts = in<CameraPercepts>();
   const GameState& game = in<GameState>();
-  applySituation(game);
+  applySituation(game, in<ChallengeMode>());
   RobotPose& pose = out<RobotPose>();
   Pose2 odometry;
   if (game.penalised() || !std::isfinite(percepts.timestamp) ||

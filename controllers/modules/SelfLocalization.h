@@ -10,6 +10,7 @@
 #include "perception/modeling/SelfLocator.h"
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameState.h"
+#include "representations/infrastructure/ChallengeMode.h"
 #include "representations/modeling/RobotPose.h"
 #include "representations/perception/CameraPercepts.h"
 #include "robot/Module.h"
@@ -87,7 +88,7 @@ void describe(V& v, SelfLocator::Params& p) {
 namespace modules {
 
 class SelfLocalization
-    : public Module<SelfLocalization, Requires<CameraPercepts, FrameHistory, GameState>, Provides<RobotPose>,
+    : public Module<SelfLocalization, Requires<CameraPercepts, FrameHistory, GameState, ChallengeMode>, Provides<RobotPose>,
                     Cadence::Cognition> {
  public:
   struct Params {
@@ -111,7 +112,7 @@ class SelfLocalization
 
  private:
   void update() override;
-  void applySituation(const GameState& game);
+  void applySituation(const GameState& game, const ChallengeMode& challenge);
 
   Params params_;
   SelfLocator locator_;
@@ -119,6 +120,7 @@ class SelfLocalization
   Pose2 lastOdometry_;
   bool started_ = false;
   bool wasPenalised_ = false;
+  int challengeModeId_ = 0;  // the last challenge start, which placed the robot at its start
   long skippedImages_ = 0;    // without a usable time or odometry history
   long skippedOdometry_ = 0;  // with a non-finite odometry reading at the image's time
 };
