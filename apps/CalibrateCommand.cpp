@@ -1,6 +1,8 @@
-// nao-soccer calibrate: the autonomous extrinsic camera calibration in the simulator (robot at
-// the calibration position, samples of the goal box, solve), true vs estimated offsets; and
-// the `eval calibration` target (many random cases) that apps/EvalCommand.cpp dispatches to.
+// nao-soccer calibrate: the autonomous extrinsic camera calibration in the simulator, done by the
+// robot program from the challenge's start (scenarios/Calibrate.h), true vs estimated offsets;
+// the `eval calibration` target (many random cases) that apps/EvalCommand.cpp dispatches to; and
+// `bench calibration`.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -9,7 +11,9 @@
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
+#include "controllers/RobotProgram.h"
 #include "perception/calibration/CalibrationStore.h"
+#include "robot/Parameters.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
 #include "scenarios/Calibrate.h"
@@ -57,13 +61,16 @@ nlohmann::json runJson(const sim::CalibrationRunResult& r) {
                          {"accepted", v.accepted},
                          {"reason", v.reason},
                          {"source", v.source},
-                         {"extract_ms", v.extractMs}};
+                         {"extract_ms", v.extractMs},
+                         {"true_pose", {v.truePose.x(), v.truePose.y(), v.truePose.z() / kDeg}}};
     if (v.residuals)
       vj["residuals"] = {{"angle1_deg", v.residuals->angle1Deg},
                          {"angle2_deg", v.residuals->angle2Deg},
                          {"depth_m", v.residuals->depthErrorM}};
     views.push_back(vj);
   }
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& e : r.events) events.push_back({{"t", e.t}, {"kind", e.kind}, {"text", e.text}});
   nlohmann::json j = {{"true_deg", paramsDeg(r.truth.toArray())},
                       {"estimated_deg", paramsDeg(r.estimate.toArray())},
                       {"error_deg", paramsDeg(difference(r.estimate, r.truth))},
@@ -81,12 +88,19 @@ nlohmann::json runJson(const sim::CalibrationRunResult& r) {
                       {"samples_used", r.solution.used.size()},
                       {"views", views},
                       {"head_id", r.headId},
+                      {"applied", r.applied},
+                      {"verify_angle_deg", r.verifyAngleDeg},
+                      {"finished", r.finished},
+                      {"phase_s", r.phaseSeconds},
+                      {"path_m", r.pathLength},
+                      {"fell", r.fell},
+                      {"events", events},
                       {"wall_s", r.wallSeconds}};
   if (r.otherSolver) {
     j["other_solver"] = {{"estimated_deg", paramsDeg(r.otherSolver->x)},
                          {"converged", r.otherSolver->converged},
                          {"solve_s", r.otherSolver->seconds},
-                         {"difference_deg", paramsDeg(difference(CameraCalibration::fromArray(r.otherSolver->x), r.estimate))}};
+                         {"difference_deg", paramsDeg(difference(CameraCalibration::fromArray(r.otherSolver->x), r.solution.offsets))}};
   }
   return j;
 }
@@ -100,19 +114,25 @@ int calibrateCommand(const CalibrateOptions& options) {
   o.lighting = lightingFrom(options.sim.lighting);
   o.miscalibration = miscalibrationFrom(options.sim, options.common.seed);
   o.seed = options.common.seed;
-  o.calibrator.solver = cal::parseSolver(options.solver);
-  o.compareSolvers = options.compare;
-  o.lineSource = options.lines == "vision" ? cal::LineSource::Vision : cal::LineSource::Lsd;
+  modules::Calibrator::Params calibrator =
+      loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
+  calibrator.solver = options.solver;
+  calibrator.compareSolvers = options.compare;
+  calibrator.lines = options.lines;
+  o.calibrator = calibrator;
   o.side = options.start == "left" ? 1 : -1;
-  if (const auto& p = options.placementError; !p.empty()) o.placementError = Eigen::Vector3d(p[0], p[1], p[2] * kDeg);
   o.imagesDir = options.images;
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
+  o.progress = [](double t) { std::fprintf(stderr, "calibrate: %.0f s of the phase\r", t); };
 
   const sim::CalibrationRunResult r = sim::runCalibration(o);
   const auto err = difference(r.estimate, r.truth);
-  std::fprintf(stderr, "calibrate: %d of %zu views gave samples, %s %s in %.3f s, reprojection %.2f px (before %.2f px)\n",
-               r.samples, r.views.size(), cal::solverName(o.calibrator.solver),
-               r.solution.solver.converged ? "converged" : "did NOT converge", r.solution.solveSeconds, r.reprojectionPx,
-               r.reprojectionBeforePx);
+  std::fprintf(stderr, "calibrate: %s after %.1f s (walked %.2f m); %d of %zu views gave samples, %s %s in %.3f s, %s; "
+               "reprojection %.2f px (before %.2f px)\n",
+               r.finished ? "reported" : "did NOT report", r.phaseSeconds, r.pathLength, r.samples, r.views.size(),
+               calibrator.solver.c_str(), r.solution.solver.converged ? "converged" : "did NOT converge",
+               r.solution.solveSeconds, r.applied ? "applied" : "NOT applied", r.reprojectionPx, r.reprojectionBeforePx);
   for (int k = 0; k < 6; ++k)
     std::fprintf(stderr, "  %-13s true %+7.3f  estimated %+7.3f  error %+7.3f deg\n", CameraCalibration::kNames[k],
                  r.truth.toArray()[k] / kDeg, r.estimate.toArray()[k] / kDeg, err[k] / kDeg);
@@ -121,7 +141,7 @@ int calibrateCommand(const CalibrateOptions& options) {
       std::fprintf(stderr, "  rejected %s yaw %+.0f: %s\n", cameraName(v.camera), v.headYawDeg, v.reason.c_str());
 
   nlohmann::json j = runJson(r);
-  j["solver"] = cal::solverName(o.calibrator.solver);
+  j["solver"] = calibrator.solver;
   j["lighting"] = lightingJson(o.lighting);
   j["seed"] = o.seed;
   j["files"] = r.imagesWritten;
@@ -132,7 +152,7 @@ int calibrateCommand(const CalibrateOptions& options) {
     rec.rmsAngleDeg = r.solution.rmsAngleDeg;
     rec.rmsDepthM = r.solution.rmsDepthM;
     rec.samples = static_cast<int>(r.solution.used.size());
-    rec.solver = cal::solverName(o.calibrator.solver);
+    rec.solver = calibrator.solver;
     rec.converged = r.solution.solver.converged && r.solution.accepted;
     const cal::SaveOutcome saved = store.save(r.headId, rec);
     j["saved"] = saved.saved;
@@ -142,11 +162,11 @@ int calibrateCommand(const CalibrateOptions& options) {
                  saved.saved ? saved.path.c_str() : saved.reason.c_str());
   }
   if (!options.common.json.empty()) writeJson(options.common.json, j);
-  return r.solution.solver.converged && r.solution.accepted ? 0 : 1;
+  return r.finished && r.applied && r.solution.accepted ? 0 : 1;
 }
 
-// eval calibration: --trials N random cases (offsets +-3 deg per parameter, placement error up
-// to 10 cm and 5 deg, a random lighting preset), each solved by both solvers.
+// eval calibration: --trials N random cases (offsets +-3 deg per parameter, a random lighting
+// preset and start side), each the robot program's phase 1, its solve checked by the other solver.
 int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   sim::CalibrationEvalOptions o;
   o.field = calibrationFieldFrom(options.common);
@@ -162,7 +182,7 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   for (const auto& t : r.trialResults) {
     nlohmann::json tj = runJson(t.run);
     tj["lighting"] = t.lighting;
-    tj["placement_error"] = {t.placementError.x(), t.placementError.y(), t.placementError.z() / kDeg};
+    tj["start"] = t.side > 0 ? "left" : "right";
     trials.push_back(tj);
   }
   nlohmann::json j = {{"trials", r.trials},
@@ -176,7 +196,8 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
                       {"solver_agreement_max_deg", r.solverAgreementMaxDeg},
                       {"solve_s", {{"median", r.solveSecondsMedian}, {"max", r.solveSecondsMax}, {"other_solver_max", r.otherSolveSecondsMax}}},
                       {"max_offset_deg", o.maxOffsetDeg},
-                      {"placement_error", {{"max_m", o.maxPlacementError}, {"max_heading_deg", o.maxHeadingErrorDeg}}},
+                      {"finished", r.finished},
+                      {"phase_s", {{"median", r.phaseSecondsMedian}, {"max", r.phaseSecondsMax}}},
                       {"seed", o.seed},
                       {"per_trial", trials}};
   std::fprintf(stderr, "eval calibration: %d trials, %d converged (both solvers), %d accepted; reprojection median %.2f px, max %.2f px; GN vs Ceres <= %.4f deg; solve <= %.3f s\n",
@@ -200,11 +221,32 @@ int benchCalibrationCommand(const BenchCalibrationOptions& options) {
   o.miscalibration = miscalibrationFrom(options.sim, o.seed);  // random (+-3 deg, from the seed) unless given
   const int repeats = options.repeats;
   checkRobotModel(o.robotModel, o.field);
-  std::fprintf(stderr, "bench calibration: collecting samples\n");
+  std::fprintf(stderr, "bench calibration: the robot program calibrates (phase 1)\n");
   const sim::CalibrationRunResult r = sim::runCalibration(o);
   if (r.solution.used.empty()) throw Error("calibration", "no samples: " + r.solution.reason);
+  // The library's sample extraction, timed on the robot's own accepted views (as its Calibrator
+  // ran it), each `repeats` times; the samples it used go to the solvers.
+  cal::ExtractionOptions extraction;
+  extraction.goalBoxDepth = o.field.goalBoxAreaLength;
+  extraction.lineWidth = o.field.lineWidth;
+  std::vector<cal::CalibrationSample> samples;
+  std::vector<double> top, bottom;
+  for (const auto& c : r.accepted) {
+    std::optional<cal::CalibrationSample> sample;
+    for (int i = 0; i < repeats; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const cal::ExtractionResult e = cal::extractSample(
+          c.image, c.joints, c.imuAngle, CameraIntrinsics::fromFovY(c.image.width, c.image.height), CameraCalibration{},
+          extraction);
+      (c.image.camera == CameraId::Top ? top : bottom)
+          .push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      sample = e.sample;
+    }
+    if (!sample) throw Error("calibration", "a view the robot accepted gave no sample again");
+    samples.push_back(*sample);
+  }
   std::vector<cal::CalibrationSample> used;
-  for (int i : r.solution.used) used.push_back(r.sampleData[i]);
+  for (int i : r.solution.used) used.push_back(samples.at(static_cast<std::size_t>(i)));
   cal::CalibratorOptions copts;
   copts.cost.goalBoxDepth = o.field.goalBoxAreaLength;
   const cal::CalibrationCost cost(used, copts.cost);
@@ -214,8 +256,6 @@ int benchCalibrationCommand(const BenchCalibrationOptions& options) {
     for (int i = 0; i < 50 * repeats; ++i) ms.push_back(1000 * cal::solveWith(kind, cost, copts).seconds);
     solve[cal::solverName(kind)] = {{"median_ms", sim::quantile(ms, 0.5)}, {"max_ms", sim::quantile(ms, 1.0)}, {"runs", ms.size()}};
   }
-  std::vector<double> top, bottom;
-  for (const auto& v : r.views) (v.camera == CameraId::Top ? top : bottom).push_back(v.extractMs);
   const nlohmann::json j = {{"solve", solve},
                             {"extract_ms", {{"top", sim::quantile(top, 0.5)}, {"bottom", sim::quantile(bottom, 0.5)}}},
                             {"samples", used.size()},

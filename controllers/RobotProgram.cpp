@@ -62,6 +62,7 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   if (!config.configDir.empty()) context.configDir = config.configDir;
   context.headId = config.headId;
   if (config.motion) context.params["MotionEngine"] = *config.motion;
+  if (config.calibrator) context.params["Calibrator"] = *config.calibrator;
   if (config.field) context.params[modules::kFieldParams] = *config.field;
   context.params["CameraCalibrationProvider"] = config.calibration;
   context.debug = debug_ = config.debug;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "controllers/MotionEngine.h"
+#include "controllers/modules/Calibrator.h"
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
 #include "representations/behavior/HeadMotionRequest.h"
@@ -39,6 +40,9 @@ struct RobotProgramConfig {
   // Walk, kick, get-up parameters instead of config/parameters/MotionEngine.json (a scenario's
   // trial parameters); unset: the files.
   std::optional<MotionEngine::Params> motion;
+  // The calibrator's parameters instead of config/parameters/Calibrator.json (calibrate's
+  // --solver, --lines, --compare); unset: the file.
+  std::optional<modules::Calibrator::Params> calibrator;
   // Holds modules.json, parameters/ and robots/<head id>/. Empty: config/modules.json of the
   // data root and every module with its compiled-in defaults (no parameter files).
   std::string configDir = defaultConfigDir();

@@ -74,6 +74,21 @@ void ParamReader::operator()(const char* key, bool& value) {
   value = j->get<bool>();
 }
 
+void ParamReader::operator()(const char* key, std::string& value, std::initializer_list<const char*> choices) {
+  const nlohmann::json* j = take(key);
+  if (!j) return;
+  std::string list;
+  for (const char* c : choices) list += (list.empty() ? "" : ", ") + std::string(c);
+  if (!j->is_string()) fail(key, "must be one of " + list);
+  const std::string v = j->get<std::string>();
+  for (const char* c : choices)
+    if (v == c) {
+      value = v;
+      return;
+    }
+  fail(key, "must be one of " + list + ", not '" + escapeControl(v).substr(0, 40) + "'");
+}
+
 void ParamReader::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it)
     if (!seen_.count(it.key())) fail(it.key(), "unknown parameter");

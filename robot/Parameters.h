@@ -17,6 +17,7 @@
 // can be checked against the defaults.
 #include <any>
 #include <map>
+#include <initializer_list>
 #include <optional>
 #include <set>
 #include <string>
@@ -38,6 +39,8 @@ class ParamReader {
   void operator()(const char* key, double& value, double min, double max);
   void operator()(const char* key, int& value, int min, int max);
   void operator()(const char* key, bool& value);
+  // A word from a fixed set (a solver's name, a source).
+  void operator()(const char* key, std::string& value, std::initializer_list<const char*> choices);
   template <class S>
   void operator()(const char* key, S& nested) {
     const nlohmann::json* j = take(key);
@@ -64,6 +67,7 @@ class ParamWriter {
   void operator()(const char* key, double& value, double, double) { json_[key] = value; }
   void operator()(const char* key, int& value, int, int) { json_[key] = value; }
   void operator()(const char* key, bool& value) { json_[key] = value; }
+  void operator()(const char* key, std::string& value, std::initializer_list<const char*>) { json_[key] = value; }
   template <class S>
   void operator()(const char* key, S& nested) {
     ParamWriter inner;

@@ -9,11 +9,15 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "controllers/RobotProgram.h"
 #include "controllers/StandController.h"
 #include "perception/CameraModel.h"
 #include "perception/Geometry.h"
 #include "perception/calibration/SampleExtraction.h"
+#include "representations/behavior/SpeechRequest.h"
+#include "representations/perception/CalibrationStatus.h"
 #include "robot/Error.h"
+#include "robot/Parameters.h"
 #include "robot/OutputFiles.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
@@ -27,15 +31,15 @@ namespace {
 namespace cal = nao::calibration;
 constexpr double kDeg = M_PI / 180;
 
-// What one view captured, with the truth kept for scoring.
+// What one view the robot's calibrator judged looked like, with the truth kept for scoring.
 struct Capture {
   CameraImage image;
   SensorFrame sensors;
   Eigen::Vector3d truePose = Eigen::Vector3d::Zero();
   CameraIntrinsics intrinsics;
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> truth;  // field point, its true pixel
-  cal::ExtractionResult extraction;
-  int sample = -1;  // index into the samples, -1 if rejected
+  std::string verdict;  // "sample" or why not
+  int sample = -1;      // index into the robot's samples, -1 if rejected
 };
 
 // Visible field-line points of a view every 5 cm (ray-cast occlusion) and their true pixels.
@@ -89,19 +93,12 @@ void drawProjectedField(cv::Mat& rgb, const CameraMatrix& cm, const Eigen::Vecto
   for (int i = 0; i < 4; ++i) segment(c[i], c[(i + 1) % 4], orange);
 }
 
-// A view with what the finder and refiner made of it: LSD line segments (blue), the goal box
-// lines' refined edges (yellow), and the verdict.
+// A view with the robot's verdict on it.
 cv::Mat annotateView(const Capture& c) {
   cv::Mat rgb = rgbFromCameraImage(c.image);
   const double s = c.image.width < 640 ? 2 : 1;
   cv::resize(rgb, rgb, cv::Size(), s, s, cv::INTER_NEAREST);
-  auto pt = [&](const Eigen::Vector2d& p) { return cv::Point2d(p.x() * s, p.y() * s); };
-  for (const auto& seg : c.extraction.segments) cv::line(rgb, pt(seg.from), pt(seg.to), cv::Scalar(60, 120, 255), 1, cv::LINE_AA);
-  if (c.extraction.sample)
-    for (const auto& l : c.extraction.sample->lines)
-      for (const ImageLine* e : {&l.edgeA, &l.edgeB}) cv::line(rgb, pt(e->from), pt(e->to), cv::Scalar(255, 230, 0), 1, cv::LINE_AA);
-  const std::string text = c.extraction.sample ? "sample" : c.extraction.reason;
-  cv::putText(rgb, text, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  cv::putText(rgb, c.verdict, cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   return rgb;
 }
 
@@ -153,15 +150,25 @@ double quantile(std::vector<double> values, double q) {
   return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
 }
 
+CameraImage shieldFrame(const World& world, CameraId cam, double time) {
+  const CameraResolution res = world.cameraResolution(cam);
+  CameraImage img;
+  img.camera = cam;
+  img.width = res.width;
+  img.height = res.height;
+  img.timestamp = time;
+  img.yuyv.assign(static_cast<std::size_t>(res.width) * res.height * 2, 16);
+  for (std::size_t i = 1; i < img.yuyv.size(); i += 2) img.yuyv[i] = 128;
+  return img;
+}
+
 CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
   const auto wall0 = std::chrono::steady_clock::now();
   CalibrationRunResult result;
   result.truth = o.miscalibration;
-  if (!o.imagesDir.empty()) {
-    io::makeDirectories(o.imagesDir);
-  }
+  if (!o.imagesDir.empty()) io::makeDirectories(o.imagesDir);
 
-  // The world: the robot at the challenge's initial position.
+  // The referee places the robot at the challenge's start.
   const Eigen::Vector3d start = cal::initialPosition(o.field, o.side);
   SceneSpec spec;
   spec.field = o.field;
@@ -169,86 +176,114 @@ CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
   spec.robots = {start};
   World world(spec, o.seed);
   world.setMiscalibration(0, o.miscalibration);
-  const JointArray stand = StandController::standPosture();
-  world.placeRobot(0, start, stand);
-  result.headId = SimBackend(world, 0, false).robotInfo().headId;
+  world.placeRobot(0, start, StandController::standPosture());
+  SimBackend backend(world, 0, true);
+  result.headId = backend.robotInfo().headId;
   CameraRenderer renderer(world.model());
   std::mt19937_64 noiseRng(o.seed ^ 0x5deece66dULL);
+  bool shield = o.shieldSeconds > 0;
+  backend.setImageSource([&](CameraId cam, double time) {
+    if (shield) return shieldFrame(world, cam, time);
+    const CameraResolution res = world.cameraResolution(cam);
+    return renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width, res.height,
+                                o.lighting, cam, time, noiseRng);
+  });
 
-  // The robot program's plan, from where it believes it stands.
-  const cal::GoalBoxSide side = cal::ownGoalBoxSide(o.field, o.side);
-  const Eigen::Vector3d calPose = cal::calibrationPosition(side, o.views);
-  const std::vector<cal::CalibrationView> views = cal::planViews(side, calPose.head<2>(), stand, o.views);
-  cal::ExtractionOptions extraction;
-  extraction.goalBoxDepth = o.field.goalBoxAreaLength;
-  extraction.lineWidth = o.field.lineWidth;
-  extraction.source = o.lineSource;
+  // The robot program as on a robot that has never been calibrated: no stored offsets.
+  RobotProgramConfig config;
+  config.field = o.field;
+  config.calibrator = o.calibrator;
+  config.debug = o.debug;
+  RobotProgram program(config);
 
+  // Every view the calibrator judged: the image it judged, with the truth at its exposure.
   std::vector<Capture> captures;
-  std::vector<cal::CalibrationSample> samples;
-  for (const cal::CalibrationView& v : views) {
-    // TO BE REPLACED BY WALKING: teleport to the view's pose (position and heading), off by the
-    // placement error; the walk will turn the robot there.
-    const double c = std::cos(calPose.z()), s = std::sin(calPose.z());
-    const Eigen::Vector3d truePose(v.robotPose.x() + c * o.placementError.x() - s * o.placementError.y(),
-                                   v.robotPose.y() + s * o.placementError.x() + c * o.placementError.y(),
-                                   v.robotPose.z() + o.placementError.z());
-    JointArray posture = stand;
-    posture[HeadYaw] = v.headYaw;
-    posture[HeadPitch] = v.headPitch;
-    world.placeRobot(0, truePose, posture);
-    // Hold still: settle, then wait until the head joints stop moving.
-    JointArray last = world.sensors(0).joints.position;
-    const double until = world.time() + o.settleSeconds;
-    for (int cycle = 0; cycle < 400; ++cycle) {
-      world.stepCycle();
-      const JointArray now = world.sensors(0).joints.position;
-      const bool still = std::abs(now[HeadYaw] - last[HeadYaw]) < 1e-6 && std::abs(now[HeadPitch] - last[HeadPitch]) < 1e-6;
-      last = now;
-      if (world.time() >= until && still) break;
-    }
+  int lastView = -1;
+  program.setCognitionObserver([&](const CameraImage& image, const Blackboard& cognition) {
+    if (!cognition.has<CalibrationStatus>()) return;
+    const CalibrationStatus& status = cognition.read<CalibrationStatus>();
+    if (status.last.viewId == lastView || status.last.imageTime != image.timestamp) return;
+    lastView = status.last.viewId;
     Capture cap;
+    cap.image = image;
     cap.sensors = world.sensors(0);
     cap.truePose = world.robotPose(0);
-    const CameraResolution res = world.cameraResolution(v.camera);
-    cap.intrinsics = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
-    cap.image = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, v.camera), res.width, res.height,
-                                     o.lighting, v.camera, world.time(), noiseRng);
-    cap.truth = visibleLinePoints(world, v.camera);
-    // The robot program's side: image + joint angles + IMU at capture time.
-    const auto extract0 = std::chrono::steady_clock::now();
-    cap.extraction = cal::extractSample(cap.image, cap.sensors.joints.position, cap.sensors.inertial.angle, cap.intrinsics,
-                                        CameraCalibration{}, extraction);
-    const double extractMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - extract0).count();
+    cap.intrinsics = CameraIntrinsics::fromFovY(image.width, image.height, world.cameraFovY());
+    cap.truth = visibleLinePoints(world, image.camera);
+    cap.verdict = status.last.accepted ? "sample" : status.last.reason;
+    if (status.last.accepted) cap.sample = result.samples++;
     ViewRecord rec;
-    rec.camera = v.camera;
+    rec.camera = image.camera;
     rec.headYawDeg = cap.sensors.joints.position[HeadYaw] / kDeg;
     rec.headPitchDeg = cap.sensors.joints.position[HeadPitch] / kDeg;
-    rec.accepted = cap.extraction.sample.has_value();
-    rec.reason = cap.extraction.reason;
-    rec.extractMs = extractMs;
-    rec.source = cap.extraction.source;
-    if (rec.accepted) {
-      cap.sample = static_cast<int>(samples.size());
-      samples.push_back(*cap.extraction.sample);
-    }
+    rec.accepted = status.last.accepted;
+    rec.reason = status.last.reason;
+    rec.extractMs = status.last.extractMs;
+    rec.source = status.last.source;
+    rec.truePose = cap.truePose;
     result.views.push_back(rec);
+    if (status.last.accepted)
+      result.accepted.push_back({image, cap.sensors.joints.position, cap.sensors.inertial.angle});
     captures.push_back(std::move(cap));
-  }
-  result.samples = static_cast<int>(samples.size());
-  result.sampleData = samples;
+  });
 
-  cal::CalibratorOptions copts = o.calibrator;
-  copts.cost.goalBoxDepth = o.field.goalBoxAreaLength;
-  try {
-    result.solution = cal::solveCalibration(samples, copts);
-  } catch (const Error& e) {
-    // Too few samples: no estimate; the views say why.
-    result.solution = {};
-    result.solution.reason = e.what();
-    result.solution.solver.message = e.what();
+  const Blackboard& motion = program.blackboard();
+  auto cycle = [&] {
+    const Eigen::Vector3d before = world.robotPose(0);
+    if (!program.cycle(backend)) throw Error("calibration", "the simulated robot stopped: " + backend.stopReason());
+    const Eigen::Vector3d after = world.robotPose(0);
+    const double step = (after.head<2>() - before.head<2>()).norm();
+    result.maxStep = std::max(result.maxStep, step);
+    result.pathLength += step;
+    const Eigen::Isometry3d torso = world.torsoPose(0);
+    if (std::acos(std::clamp(torso.linear()(2, 2), -1.0, 1.0)) > 45 * kDeg || torso.translation().z() < 0.15)
+      result.fell = true;
+  };
+  auto note = [&](const std::string& kind, const std::string& text) { result.events.push_back({world.time(), kind, text}); };
+  // The shield, then the start signal: chest + head front held 1.2 s; the rules' clock starts
+  // when the hold reaches 1 s (the robot's own rule fires then).
+  note("shield", "on");
+  while (world.time() < o.shieldSeconds) cycle();
+  shield = false;
+  note("shield", "off");
+  world.setTouch(0, ChestButton, 1.0);
+  world.setTouch(0, HeadFront, 1.0);
+  const double holdStart = world.time();
+  note("button", "chest + head front");
+  while (world.time() < holdStart + 1.2) cycle();
+  world.setTouch(0, ChestButton, 0.0);
+  world.setTouch(0, HeadFront, 0.0);
+  const double phaseStart = holdStart + 1.0;
+  int lastSpeech = motion.read<SpeechRequest>().id;
+  double nextProgress = 0;
+  while (world.time() - phaseStart < o.timeLimit) {
+    cycle();
+    const SpeechRequest& speech = motion.read<SpeechRequest>();
+    if (speech.id != lastSpeech) {
+      lastSpeech = speech.id;
+      note("speech", speech.text);
+      // The report counts when the robot says it with an arm up (truth: a hand above the head).
+      const double headZ = world.cameraPose(0, CameraId::Top).translation().z();
+      const bool armUp = world.handPosition(0, false).z() > headZ || world.handPosition(0, true).z() > headZ;
+      if (speech.text == "Calibration finished" && armUp) {
+        result.finished = true;
+        break;
+      }
+    }
+    if (o.progress && world.time() >= nextProgress) {
+      o.progress(world.time() - phaseStart);
+      nextProgress = std::floor(world.time()) + 1;
+    }
   }
-  result.estimate = result.solution.offsets;
+  result.phaseSeconds = world.time() - phaseStart;
+  for (auto& e : result.events) e.t -= phaseStart;
+
+  const CalibrationStatus& status = program.cognitionBoard().read<CalibrationStatus>();
+  result.solution = status.solution;
+  result.otherSolver = status.otherSolver;
+  result.applied = status.appliedId > 0;
+  result.estimate = result.applied ? status.applied : status.solution.offsets;
+  result.verifyAngleDeg = status.verifyAngleDeg;
   // Samples dropped as outliers do not count as accepted views.
   for (const auto& [index, why] : result.solution.dropped)
     for (std::size_t k = 0; k < captures.size(); ++k)
@@ -256,17 +291,9 @@ CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
         result.views[k].accepted = false;
         result.views[k].reason = "dropped after the solve: " + why;
       }
-  for (std::size_t i = 0; i < result.solution.used.size(); ++i)
+  for (std::size_t i = 0; i < result.solution.used.size() && i < result.solution.residuals.size(); ++i)
     for (std::size_t k = 0; k < captures.size(); ++k)
       if (captures[k].sample == result.solution.used[i]) result.views[k].residuals = result.solution.residuals[i];
-  if (o.compareSolvers && !result.solution.used.empty()) {
-    std::vector<cal::CalibrationSample> used;
-    for (int i : result.solution.used) used.push_back(samples[i]);
-    const cal::CalibrationCost cost(used, copts.cost);
-    const cal::SolverKind other =
-        copts.solver == cal::SolverKind::GaussNewton ? cal::SolverKind::Ceres : cal::SolverKind::GaussNewton;
-    result.otherSolver = cal::solveWith(other, cost, copts);
-  }
 
   result.reprojectionPx = reprojectionRms(captures, result.estimate, &result.reprojectionPoints);
   result.reprojectionBeforePx = reprojectionRms(captures, CameraCalibration{}, nullptr);
@@ -283,11 +310,11 @@ CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
       writePng(o.imagesDir + name, captures[k].image);
       result.imagesWritten.push_back(o.imagesDir + name);
     }
-    // Fig. 2: the views nearest to a straight head, before and after.
+    // Fig. 2: the accepted views nearest to a straight head, before and after.
     auto straightest = [&](CameraId cam) -> const Capture* {
       const Capture* best = nullptr;
       for (const Capture& c : captures)
-        if (c.image.camera == cam &&
+        if (c.image.camera == cam && c.sample >= 0 &&
             (!best || std::abs(c.sensors.joints.position[HeadYaw]) < std::abs(best->sensors.joints.position[HeadYaw])))
           best = &c;
       return best;
@@ -308,9 +335,13 @@ CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
 CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {
   if (o.trials < 1) throw Error("--trials", "must be at least 1");
   if (o.lightings.empty()) throw Error("calibration eval", "no lighting presets");
+  modules::Calibrator::Params calibrator =
+      loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
+  calibrator.solver = cal::solverName(o.solver);
+  calibrator.compareSolvers = o.compareSolvers;
   CalibrationEvalResult result;
   std::array<std::vector<double>, 6> errors;
-  std::vector<double> reprojection, solveSeconds;
+  std::vector<double> reprojection, solveSeconds, phaseSeconds;
   for (int t = 0; t < o.trials; ++t) {
     std::mt19937_64 rng(o.seed * 1000003ULL + static_cast<std::uint64_t>(t));
     std::uniform_real_distribution<double> uni(-1, 1);
@@ -320,34 +351,32 @@ CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {
     std::array<double, 6> offsets{};
     for (double& v : offsets) v = uni(rng) * o.maxOffsetDeg * kDeg;
     run.miscalibration = CameraCalibration::fromArray(offsets);
-    // Placement error: uniform in a disc of maxPlacementError, heading uniform in +-max.
-    const double r = o.maxPlacementError * std::sqrt(0.5 * (uni(rng) + 1)), a = M_PI * uni(rng);
-    run.placementError = Eigen::Vector3d(r * std::cos(a), r * std::sin(a), uni(rng) * o.maxHeadingErrorDeg * kDeg);
     const std::size_t li = static_cast<std::size_t>(rng() % o.lightings.size());
     run.lighting = o.lightings[li];
-    run.calibrator.solver = o.solver;
-    run.calibrator.cost = o.cost;
-    run.views = o.views;
-    run.lineSource = o.lineSource;
-    run.compareSolvers = true;
+    run.side = rng() % 2 ? 1 : -1;
+    run.calibrator = calibrator;
     run.seed = o.seed * 7919 + static_cast<std::uint64_t>(t);
 
     CalibrationTrial trial;
     trial.lighting = run.lighting.name;
-    trial.placementError = run.placementError;
+    trial.side = run.side;
     trial.run = runCalibration(run);
     const CalibrationRunResult& res = trial.run;
     ++result.trials;
-    if (res.solution.solver.converged && res.otherSolver && res.otherSolver->converged) ++result.converged;
-    if (res.solution.accepted) ++result.accepted;
+    result.finished += res.finished;
+    if (res.solution.solver.converged && (!o.compareSolvers || (res.otherSolver && res.otherSolver->converged)))
+      ++result.converged;
+    if (res.solution.accepted && res.applied) ++result.accepted;
     const auto est = res.estimate.toArray(), truth = res.truth.toArray();
     for (int k = 0; k < 6; ++k) {
       errors[k].push_back(std::abs(est[k] - truth[k]) / kDeg);
       if (res.otherSolver)
-        result.solverAgreementMaxDeg = std::max(result.solverAgreementMaxDeg, std::abs(res.otherSolver->x[k] - est[k]) / kDeg);
+        result.solverAgreementMaxDeg =
+            std::max(result.solverAgreementMaxDeg, std::abs(res.otherSolver->x[k] - res.solution.offsets.toArray()[k]) / kDeg);
     }
     reprojection.push_back(res.reprojectionPx);
     solveSeconds.push_back(res.solution.solveSeconds);
+    phaseSeconds.push_back(res.phaseSeconds);
     result.solveSecondsMax = std::max(result.solveSecondsMax, res.solution.solveSeconds);
     if (res.otherSolver) result.otherSolveSecondsMax = std::max(result.otherSolveSecondsMax, res.otherSolver->seconds);
     result.trialResults.push_back(std::move(trial));
@@ -362,6 +391,8 @@ CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {
   result.reprojectionP95Px = quantile(reprojection, 0.95);
   result.reprojectionMaxPx = quantile(reprojection, 1.0);
   result.solveSecondsMedian = quantile(solveSeconds, 0.5);
+  result.phaseSecondsMedian = quantile(phaseSeconds, 0.5);
+  result.phaseSecondsMax = quantile(phaseSeconds, 1.0);
   return result;
 }
 

@@ -1,16 +1,14 @@
 #pragma once
-// The autonomous extrinsic camera calibration in the simulator, scored against the injected
-// truth. The robot starts at the challenge's initial position (side line, in line with the own
-// penalty mark), goes to the calibration position at the side of its goal box and takes the
-// box with each camera at several head pan angles, turning its body so the box stays in view;
-// the head is held still while each image is taken. The samples (refined image lines, joint
-// angles, IMU angles) are solved for the six offsets, and the result is compared with the
-// offsets the simulator injected.
-//
-// TO BE REPLACED BY WALKING: the robot is teleported (World::placeRobot) to the calibration
-// position and turned in place between views; the walk (issue 4) will do this. The robot does
-// not need to know where it stands exactly (only relative angles and distances enter the
-// cost), which is why `placementError` may put it up to 10 cm / 5 deg off the planned pose.
+// The autonomous extrinsic camera calibration in the simulator, done by the robot program and
+// scored against the injected truth: the calibration challenge's phase 1
+// (../shared/reference/calibration-challenge.md). The referee places the robot at the start (a
+// side line, in line with the own penalty mark), holds the camera shield over it, takes the
+// shield away and holds chest + head front; the robot program localizes, walks to the side of
+// its own goal box, turns for each view, takes the samples (its Calibrator module), solves,
+// applies, verifies and reports "Calibration finished" with an arm up. Nothing moves the robot
+// after the placement; the scorer reads the truth (the injected offsets, the true camera poses
+// for the reprojection, the path the robot walked).
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -19,11 +17,15 @@
 
 #include <Eigen/Core>
 
+#include "controllers/modules/Calibrator.h"
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
 #include "perception/calibration/Calibrator.h"
 #include "perception/calibration/CalibrationViews.h"
 #include "perception/calibration/SampleExtraction.h"
+#include "robot/CameraImage.h"
+#include "robot/JointIds.h"
+#include "robot/Debug.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -34,14 +36,15 @@ struct CalibrationRunOptions {
   CameraCalibration miscalibration;       // injected into the simulated hardware
   Lighting lighting;
   int side = -1;                          // start on the right (-1, y < 0) or left (+1) side line
-  Eigen::Vector3d placementError = Eigen::Vector3d::Zero();  // true minus planned pose (m, m, rad)
-  calibration::ViewPlanOptions views;
-  calibration::CalibratorOptions calibrator;  // cost options are set from the field
-  calibration::LineSource lineSource = calibration::LineSource::Lsd;
-  bool compareSolvers = false;            // also solve the same samples with the other solver
+  // The robot program's Calibrator parameters (config/parameters/Calibrator.json unless set):
+  // calibrate's --solver, --lines and --compare go here.
+  std::optional<modules::Calibrator::Params> calibrator;
   std::uint64_t seed = 1;
   std::string imagesDir;                  // non-empty: every view annotated, and the Fig. 2 pictures
-  double settleSeconds = 0.3;             // simulated time to let the robot come to rest per view
+  double shieldSeconds = 2;               // the camera shield before the start (dark frames)
+  double timeLimit = 600;                 // s of the phase (the rules' 10 min)
+  std::function<void(double simTime)> progress;  // about once per simulated second
+  DebugChannels* debug = nullptr;         // the robot program's debug channels (not owned); null: none
 };
 
 struct ViewRecord {
@@ -52,26 +55,55 @@ struct ViewRecord {
   std::optional<calibration::SampleResiduals> residuals;  // at the estimate, when used in the solve
   double extractMs = 0;                   // wall time from image to sample (or rejection)
   std::string source;                     // where the sample's segments came from: vision or lsd
+  Eigen::Vector3d truePose = Eigen::Vector3d::Zero();  // where the robot stood (truth: x, y, theta)
+};
+
+// A moment the referee noted (the buttons, what the robot said).
+struct CalibrationEvent {
+  double t = 0;  // s of simulated time since the placement
+  std::string kind, text;
 };
 
 struct CalibrationRunResult {
   std::string headId;                     // the simulated robot's head id (the calibration store's key)
-  CameraCalibration truth, estimate;
-  calibration::CalibrationSolution solution;
-  std::optional<calibration::SolverResult> otherSolver;  // the other solver, same samples, no outlier step
-  std::vector<ViewRecord> views;
+  CameraCalibration truth;
+  CameraCalibration estimate;             // what the robot applied (none applied: its last solution)
+  bool applied = false;
+  calibration::CalibrationSolution solution;  // the robot's last solve
+  std::optional<calibration::SolverResult> otherSolver;  // Calibrator.compareSolvers: the other solver, same samples
+  double verifyAngleDeg = -1;             // the robot's own check of the applied offsets
+  std::vector<ViewRecord> views;          // every view the robot's calibrator judged, in order
   int samples = 0;
-  std::vector<calibration::CalibrationSample> sampleData;  // what the solver got (before outliers)
   // Field lines in every accepted view: RMS pixel distance between where the camera model
   // puts them (with the estimate / with no offsets, at the true robot pose) and where they
   // truly are in the image (the simulator's camera pose).
   double reprojectionPx = 0, reprojectionBeforePx = 0;
   int reprojectionPoints = 0;
+  // The phase as the referee saw it: from the start signal (the button hold reaching 1 s) to
+  // the report ("Calibration finished" said with an arm up, in truth).
+  bool finished = false;
+  double phaseSeconds = 0;
+  double pathLength = 0, maxStep = 0;     // m walked (truth), the largest move in one 12 ms cycle
+  bool fell = false;                      // torso tilted beyond 45 deg or below 0.15 m
+  std::vector<CalibrationEvent> events;
   double wallSeconds = 0;
   std::vector<std::string> imagesWritten;
+  // The accepted views' images and what the robot knew at their exposure (bench calibration
+  // extracts their samples again to time the library).
+  struct Capture {
+    CameraImage image;
+    JointArray joints{};
+    Eigen::Vector2d imuAngle = Eigen::Vector2d::Zero();
+  };
+  std::vector<Capture> accepted;
 };
 
-// With too few samples the solution is not converged and says why (views hold the reasons).
+class World;
+// The camera shield the referee holds over the robot: a dark frame (YUYV black) in place of a render.
+CameraImage shieldFrame(const World& world, CameraId camera, double time);
+
+// Phase 1 of the challenge by the robot program. Not finished within the time limit: the
+// result says so (finished false) with whatever the robot had done.
 CalibrationRunResult runCalibration(const CalibrationRunOptions& options);
 
 struct CalibrationEvalOptions {
@@ -81,27 +113,24 @@ struct CalibrationEvalOptions {
   std::string robotModel;
   std::vector<Lighting> lightings;        // one is drawn per trial
   double maxOffsetDeg = 3;                // injected offsets uniform in +-this, per parameter
-  double maxPlacementError = 0.10;        // m, per axis... within a disc of this radius
-  double maxHeadingErrorDeg = 5;
   calibration::SolverKind solver = calibration::SolverKind::GaussNewton;
-  calibration::ViewPlanOptions views;       // the views each trial takes
-  calibration::CostOptions cost;            // residual weights and extras (goal box depth from the field)
-  calibration::LineSource lineSource = calibration::LineSource::Lsd;
+  bool compareSolvers = true;             // the robot's calibrator checks its solve with the other solver
   std::function<void(int done, int total)> progress;
 };
 
 struct CalibrationTrial {
   CalibrationRunResult run;
   std::string lighting;
-  Eigen::Vector3d placementError = Eigen::Vector3d::Zero();
+  int side = -1;
 };
 
 struct CalibrationEvalResult {
-  int trials = 0, converged = 0, accepted = 0;
+  int trials = 0, converged = 0, accepted = 0, finished = 0;
   std::array<double, 6> medianAbsErrorDeg{}, p95AbsErrorDeg{}, maxAbsErrorDeg{};
   double reprojectionMedianPx = 0, reprojectionP95Px = 0, reprojectionMaxPx = 0;
   double solverAgreementMaxDeg = 0;        // largest |GN - Ceres| over all trials and parameters
   double solveSecondsMax = 0, otherSolveSecondsMax = 0, solveSecondsMedian = 0;
+  double phaseSecondsMedian = 0, phaseSecondsMax = 0;
   std::vector<CalibrationTrial> trialResults;
 };
 

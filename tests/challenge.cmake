@@ -6,5 +6,3 @@ nao_add_test(challenge_buttons_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/challenge_
 nao_add_test(report_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/report_test.cpp LIBS nao_scenarios TIMEOUT 300)
 # The Calibrator module on rendered goal-box views of a robot with injected offsets.
 nao_add_test(calibrator_module_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrator_module_test.cpp LIBS nao_scenarios TIMEOUT 600)
-# Phase 1 by the robot program: from the start to the goal box, views, solve, apply, report.
-nao_add_test(calibration_phase1_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibration_phase1_test.cpp LIBS nao_scenarios TIMEOUT 900)

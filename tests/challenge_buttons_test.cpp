@@ -13,6 +13,7 @@
 #include "representations/behavior/SpeechRequest.h"
 #include "representations/infrastructure/ChallengeMode.h"
 #include "robot/Paths.h"
+#include "scenarios/Calibrate.h"
 #include "sim/SimBackend.h"
 #include "sim/World.h"
 #include "tests/support/ModuleHarness.h"
@@ -61,17 +62,7 @@ TEST(ChallengeButtons, TheRefereesButtonsOnTheSimulatedRobot) {
   world.placeRobot(0, start, StandController::standPosture());
   sim::SimBackend backend(world, 0, true);
   // The camera shield on: dark frames (cognition, and so the behaviour, runs per frame).
-  backend.setImageSource([&](CameraId cam, double time) {
-    const sim::CameraResolution res = world.cameraResolution(cam);
-    CameraImage img;
-    img.camera = cam;
-    img.width = res.width;
-    img.height = res.height;
-    img.timestamp = time;
-    img.yuyv.assign(static_cast<std::size_t>(res.width) * res.height * 2, 16);
-    for (std::size_t i = 1; i < img.yuyv.size(); i += 2) img.yuyv[i] = 128;
-    return img;
-  });
+  backend.setImageSource([&](CameraId cam, double time) { return sim::shieldFrame(world, cam, time); });
   RobotProgramConfig config;
   config.field = field;
   RobotProgram program(config);

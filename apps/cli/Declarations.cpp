@@ -247,7 +247,7 @@ void CommandLine::declare() {
     debugOptions(c, p.debug);
 
     EvalCalibrationOptions& k = o.evalCalibration;
-    Command& ck = leaf(eval, "calibration", "random offsets, placements and lightings: errors against the injected truth", k.common);
+    Command& ck = leaf(eval, "calibration", "the robot program calibrates itself (phase 1) with random offsets, lightings and start sides: errors against the injected truth", k.common);
     seedJsonField(ck);
     ck.count("--trials", k.trials, 1, 10000, "random cases");
     ck.text("--lighting", k.lighting, "SPEC", "sweep (a random preset of the sweep per case) or " + kLightingHelp + " (default sweep)");
@@ -371,21 +371,15 @@ void CommandLine::declare() {
   }
   {
     CalibrateOptions& k = o.calibrate;
-    Command& c = leaf(root, "calibrate", "the six camera offsets from the goal box (sim): true against estimated", k.common);
+    Command& c = leaf(root, "calibrate", "the robot program calibrates its six camera offsets from the goal box, from the challenge's start (sim): true against estimated", k.common);
     seedJsonField(c);
     simOptions(c, k.sim);
     c.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "least-squares solver");
     c.flag("--compare", k.compare, "also solve the same samples with the other solver");
     c.choice("--lines", k.lines, {"lsd", "vision"}, "image line segments from OpenCV's LSD or the vision pipeline first");
     c.choice("--start", k.start, {"left", "right"}, "the side line the robot starts on");
-    c.numbers("--placement-error", k.placementError, {{"DX", "m", -0.5, 0.5}, {"DY", "m", -0.5, 0.5}, {"DTHETA", "deg", -30, 30}},
-              "where the robot really stands against the plan (default 0,0,0; at most 0.5 m away)");
-    c.rule([&k] {
-      if (k.placementError.size() == 3 && std::hypot(k.placementError[0], k.placementError[1]) > 0.5)
-        return std::string("--placement-error: more than 0.5 m from the plan");
-      return std::string();
-    });
     c.outputFolder("--images", k.images, "write every view annotated and the before/after pictures (paper Fig. 2)");
+    debugOptions(c, k.debug);
     auto* save = c.flag("--save", k.save, "store an accepted result for this robot's head id (refused above the residual threshold)");
     c.outputFolder("--store", k.store, "calibration folder for --save (default config/calibration)")->needs(save);
     c.rule([&k] {

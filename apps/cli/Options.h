@@ -147,8 +147,8 @@ struct TrainFrictionOptions {
 struct CalibrateOptions {
   CommonOptions common;
   SimOptions sim;
+  DebugOptions debug;
   std::string solver = "gauss-newton", lines = "lsd", start = "right", images, store;
-  std::vector<double> placementError;
   bool compare = false, save = false;
 };
 

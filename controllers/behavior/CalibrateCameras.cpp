@@ -11,6 +11,10 @@ GoToPose::Params goToParams(const CalibrateCameras::Params& p) {
   GoToPose::Params g;
   g.arrivedDistance = p.arrivedDistance;
   g.arrivedAngle = p.arrivedAngle;
+  // The estimate of an uncalibrated robot wanders by a few centimetres: re-targeting on each
+  // wander would keep it stepping and never arrive.
+  g.retargetNear = p.retargetNear;
+  g.retargetAngle = p.retargetAngle;
   return g;
 }
 }  // namespace
@@ -58,6 +62,90 @@ void CalibrateCameras::nextView(double time, Output& out) {
   (void)out;
 }
 
+void CalibrateCameras::planViewsFromHere(const RobotPose& here, bool aligned, double time, Output& out) {
+  // Aligned with the box, the robot stands at the calibration position; else where it believes
+  // it stands. The views' headings become turns from here on odometry.
+  anchor_ = here;
+  if (aligned) anchor_.pose = Pose2(position_.x(), position_.y(), position_.z());
+  views_.clear();
+  for (const calibration::CalibrationView& v :
+       calibration::planViews(side_, Eigen::Vector2d(anchor_.pose.x, anchor_.pose.y), stand_))
+    views_.push_back({v, 0, false});
+  current_ = 0;
+  nextView(time, out);
+}
+
+void CalibrateCameras::align(const BehaviorInput& in, const CameraPercepts& percepts, Output& out) {
+  const double t = in.time;
+  out.lookActive = false;
+  out.head.mode = HeadMotionRequest::Mode::Angles;
+  // The top camera's view of the box side from the calibration position: the plan's straight view.
+  const std::vector<calibration::CalibrationView> plan = calibration::planViews(side_, position_.head<2>(), stand_);
+  for (const auto& v : plan)
+    if (v.camera == CameraId::Top && std::abs(v.headYaw) < 1e-6) out.head.pitch = v.headPitch;
+  out.head.yaw = 0;
+  if (alignWalking_) {
+    out.motion.motion = MotionType::WalkTo;
+    out.motion.walkTarget = alignTarget_;
+    out.motion.walkTargetInOdometry = true;
+    out.motion.walkTargetId = walkId_;
+    if (t - alignSince_ >= params_.turnSettle && in.motion.walkToReached) {
+      alignWalking_ = false;
+      alignSince_ = t;
+      alignImages_ = 0;
+      alignMiddle_ = alignDirection_ = Eigen::Vector2d::Zero();
+    }
+    return;
+  }
+  out.motion = MotionRequest{};
+  if (t - alignSince_ < params_.alignLook) return;
+  // The short line: ahead within reach, roughly square to the view.
+  if (percepts.camera == CameraId::Top && percepts.processed) {
+    for (const LinesPercept::Line& l : percepts.lines) {
+      const Eigen::Vector2d middle = (l.from + l.to) / 2;
+      Eigen::Vector2d d = l.to - l.from;
+      if (d.norm() < 0.2 || middle.x() < 0.4 || middle.x() > 2.0 || std::abs(middle.y()) > 0.8) continue;
+      d.normalize();
+      if (d.y() < 0) d = -d;  // one orientation: along +y
+      if (std::abs(d.x()) > std::sin(0.5)) continue;  // not square to the view
+      alignMiddle_ += middle;
+      alignDirection_ += d;
+      ++alignImages_;
+      break;
+    }
+  }
+  if (t - alignSince_ < params_.alignLook + params_.alignGather) return;
+  if (alignImages_ == 0 || alignStep_ >= params_.alignSteps) {
+    planViewsFromHere(in.pose, false, t, out);  // no line in view (or enough tries): go on from here
+    return;
+  }
+  const Eigen::Vector2d middle = alignMiddle_ / alignImages_;
+  const Eigen::Vector2d along = alignDirection_.normalized();
+  // The calibration position: `distance` from the middle, on the robot's side of the line,
+  // facing the middle.
+  Eigen::Vector2d normal(along.y(), -along.x());  // points away from the robot (+x side)
+  if (normal.dot(middle) < 0) normal = -normal;
+  const double distance = (position_.head<2>() - side_.middle()).norm();
+  const Eigen::Vector2d goal = middle - distance * normal;
+  const double heading = std::atan2(normal.y(), normal.x());
+  if (goal.norm() < params_.alignDistance && std::abs(heading) < params_.alignAngle) {
+    summary_.aligned = true;
+    planViewsFromHere(in.pose, true, t, out);
+    return;
+  }
+  // Walk there, in the odometry frame at this image's time.
+  ++alignStep_;
+  ++summary_.alignSteps;
+  ++walkId_;
+  alignTarget_ = in.pose.odometry * Pose2(goal.x(), goal.y(), heading);
+  alignWalking_ = true;
+  alignSince_ = t;
+  out.motion.motion = MotionType::WalkTo;
+  out.motion.walkTarget = alignTarget_;
+  out.motion.walkTargetInOdometry = true;
+  out.motion.walkTargetId = walkId_;
+}
+
 void CalibrateCameras::startRound(double time, Output& out) {
   // The rejected views once more, their pans moved (alternately to either side): another view
   // of the box where the first one was unusable.
@@ -77,7 +165,7 @@ void CalibrateCameras::startRound(double time, Output& out) {
 }
 
 CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const CalibrationStatus& status,
-                                               const CameraCalibration& current) {
+                                               const CameraCalibration& current, const CameraPercepts& percepts) {
   Output out;
   out.head.maxSpeed = params_.headMaxSpeed;
   const double t = in.time;
@@ -102,15 +190,16 @@ CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const Ca
       break;
     case State::GoToPosition:
       if (goTo_.run(in, Pose2(position_.x(), position_.y(), position_.z()), out.motion)) {
-        anchor_ = in.pose;
-        // Plan again from where it believes it stands now: the headings aim at the box from here.
-        views_.clear();
-        for (const calibration::CalibrationView& v :
-             calibration::planViews(side_, Eigen::Vector2d(in.pose.pose.x, in.pose.pose.y), stand_))
-          views_.push_back({v, 0, false});
-        current_ = 0;
-        nextView(t, out);
+        alignStep_ = 0;
+        alignWalking_ = false;
+        alignSince_ = t;
+        alignImages_ = 0;
+        alignMiddle_ = alignDirection_ = Eigen::Vector2d::Zero();
+        machine_.go(State::Align, t);
       }
+      break;
+    case State::Align:
+      align(in, percepts, out);
       break;
     case State::Turn:
     case State::Aim: {

@@ -1,9 +1,12 @@
 #pragma once
 // Option: the Autonomous Calibration Challenge's phase 1 (../shared/reference/calibration-challenge.md,
 // B-Human 2021 section 3). From the start on a side line it localizes (the start's two poses),
-// walks to the side of its own goal box on that side (calibrationPosition), takes the box with
-// each camera at several head pans (planViews: one body heading per pan, turned in place on
-// odometry, so the miscalibrated localization only has to bring it near the spot), has the
+// walks to the side of its own goal box on that side (calibrationPosition), then aligns itself
+// with the box's short line as the top camera sees it (the line's bearing and direction do not
+// depend on the camera's pitch, which the uncalibrated localization's distances do: 2.8 deg of
+// top-camera pitch put the robot 26 cm off, on the front line's extension, where the box's long
+// lines run edge-on), takes the box with each camera at several head pans (planViews from the
+// aligned position: one body heading per pan, turned in place on odometry), has the
 // Calibrator solve, applies an accepted solution, checks it on one more view and reports
 // "Calibration finished" with an arm up. A solution that is not accepted gets another round of
 // the rejected views at pans shifted by retakePanDeg; after maxRounds the robot reports anyway
@@ -21,6 +24,7 @@
 #include "representations/behavior/HeadMotionRequest.h"
 #include "representations/behavior/MotionRequest.h"
 #include "representations/perception/CalibrationStatus.h"
+#include "representations/perception/CameraPercepts.h"
 
 namespace nao::behavior {
 
@@ -37,8 +41,15 @@ class CalibrateCameras {
     double headMaxSpeed = 1.5;     // rad/s to each view's head angles
     double arrivedDistance = 0.1;  // m: the calibration position by the estimate ...
     double arrivedAngle = 0.1;     // rad
+    double retargetNear = 0.08;    // m: the walk's target moves only when the estimate moves it this much ...
+    double retargetAngle = 0.1;    // rad: ... or this much
+    double alignLook = 0.8;        // s with the head on the box before the short line counts
+    double alignGather = 0.6;      // s of images averaged per alignment step
+    double alignDistance = 0.04;   // m: aligned when the short line's middle is this near straight ahead ...
+    double alignAngle = 0.05;      // rad: ... and the line this near square to the view
+    int alignSteps = 4;            // alignment walks at most; then it goes on from where it stands
   };
-  enum class State { Localize, GoToPosition, Turn, Aim, Collect, Solve, Apply, Verify, Report, Done };
+  enum class State { Localize, GoToPosition, Align, Turn, Aim, Collect, Solve, Apply, Verify, Report, Done };
 
   // What it asks for. `lookActive` while localizing and walking (the caller's LookActive
   // chooses the head then); `report` once, with the text to say.
@@ -51,7 +62,8 @@ class CalibrateCameras {
   };
   // The result, for the log and the referee's pictures.
   struct Summary {
-    int views = 0, accepted = 0, rounds = 0;
+    int views = 0, accepted = 0, rounds = 0, alignSteps = 0;
+    bool aligned = false;  // the short line was seen square ahead before the views
     bool applied = false;
     double verifyAngleDeg = -1;
   };
@@ -59,7 +71,8 @@ class CalibrateCameras {
   CalibrateCameras(const FieldDimensions& field, const JointArray& standPosture, const Params& params);
   // A new challenge start: from the beginning.
   void restart(double time);
-  Output run(const BehaviorInput& in, const CalibrationStatus& status, const CameraCalibration& current);
+  Output run(const BehaviorInput& in, const CalibrationStatus& status, const CameraCalibration& current,
+             const CameraPercepts& percepts);
   State state() const { return machine_.state; }
   // The report is over: stand still from now on.
   void reported(double time) {
@@ -79,6 +92,10 @@ class CalibrateCameras {
   void startRound(double time, Output& out);
   // The odometry target that turns the body in place to a field heading.
   Pose2 turnTarget(double heading) const;
+  void planViewsFromHere(const RobotPose& here, bool aligned, double time, Output& out);
+  // One alignment step on the top camera's percepts: the box's short line (near, ahead, square
+  // to the view) gives where the calibration position is relative to the robot.
+  void align(const BehaviorInput& in, const CameraPercepts& percepts, Output& out);
 
   FieldDimensions field_;
   JointArray stand_;
@@ -95,6 +112,12 @@ class CalibrateCameras {
   int appliedBefore_ = 0;
   int round_ = 0;
   GoToPose goTo_;
+  // Alignment: the short line's middle and direction (robot frame) summed over the gathered images.
+  Eigen::Vector2d alignMiddle_ = Eigen::Vector2d::Zero(), alignDirection_ = Eigen::Vector2d::Zero();
+  int alignImages_ = 0, alignStep_ = 0;
+  double alignSince_ = 0;
+  bool alignWalking_ = false;
+  Pose2 alignTarget_;  // odometry frame
   Summary summary_;
 };
 
@@ -110,6 +133,13 @@ void describe(V& v, CalibrateCameras::Params& p) {
   v("headMaxSpeed", p.headMaxSpeed, 0.1, 10.0);
   v("arrivedDistance", p.arrivedDistance, 0.01, 1.0);
   v("arrivedAngle", p.arrivedAngle, 0.01, 1.0);
+  v("retargetNear", p.retargetNear, 0.0, 1.0);
+  v("retargetAngle", p.retargetAngle, 0.0, 1.0);
+  v("alignLook", p.alignLook, 0.0, 5.0);
+  v("alignGather", p.alignGather, 0.0, 5.0);
+  v("alignDistance", p.alignDistance, 0.001, 1.0);
+  v("alignAngle", p.alignAngle, 0.001, 1.0);
+  v("alignSteps", p.alignSteps, 0, 20);
 }
 
 }  // namespace nao::behavior

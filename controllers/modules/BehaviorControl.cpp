@@ -22,6 +22,7 @@ const char* calibrateStateName(behavior::CalibrateCameras::State s) {
   switch (s) {
     case S::Localize: return "localize";
     case S::GoToPosition: return "go_to_position";
+    case S::Align: return "align";
     case S::Turn: return "turn";
     case S::Aim: return "aim";
     case S::Collect: return "collect";
@@ -78,7 +79,7 @@ void BehaviorControl::update() {
   const bool calibrating = challenge.mode == ChallengeMode::Mode::Calibration;
   if (calibrating) {
     behavior::CalibrateCameras::Output c =
-        calibrate_->run(input, in<Previous<CalibrationStatus>>(), in<CameraCalibration>());
+        calibrate_->run(input, in<Previous<CalibrationStatus>>(), in<CameraCalibration>(), in<CameraPercepts>());
     motion = c.motion;
     calibration = c.calibration;
     if (c.lookActive) look_->run(input, head);

@@ -25,6 +25,7 @@
 #include "representations/modeling/RobotPose.h"
 #include "representations/motion/MotionInfo.h"
 #include "representations/perception/CalibrationStatus.h"
+#include "representations/perception/CameraPercepts.h"
 #include "representations/perception/FallState.h"
 #include "perception/CameraCalibration.h"
 #include "robot/Module.h"
@@ -35,7 +36,7 @@ namespace nao::modules {
 class BehaviorControl
     : public Module<BehaviorControl,
                     Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory,
-                             ChallengeMode, CameraCalibration, Previous<CalibrationStatus>>,
+                             ChallengeMode, CameraCalibration, CameraPercepts, Previous<CalibrationStatus>>,
                     Provides<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationRequest>,
                     Cadence::Cognition> {
  public:

@@ -1,6 +1,7 @@
 #include "controllers/modules/Calibrator.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "controllers/modules/ModuleField.h"
@@ -52,6 +53,15 @@ Calibrator::Calibrator(const ModuleContext& context) : params_(context.load<Para
   solver_.minSamplesPerCamera = params_.minSamplesPerCamera;
   solver_.maxRmsAngleDeg = params_.maxRmsAngleDeg;
   solver_.maxRmsDepthM = params_.maxRmsDepthM;
+  if (params_.solver != "gauss-newton" && params_.solver != "ceres")
+    throw Error("Calibrator.solver", "must be gauss-newton or ceres, not '" + params_.solver + "'");
+  solver_.solver = calibration::parseSolver(params_.solver);
+  if ((solver_.solver == calibration::SolverKind::Ceres || params_.compareSolvers) && !calibration::ceresAvailable())
+    throw Error(params_.compareSolvers ? "Calibrator.compareSolvers" : "Calibrator.solver",
+                "needs Ceres, which this executable is built without (nao-soccer-robot): use gauss-newton alone");
+  if (params_.lines != "lsd" && params_.lines != "vision")
+    throw Error("Calibrator.lines", "must be lsd or vision, not '" + params_.lines + "'");
+  extraction_.source = params_.lines == "vision" ? calibration::LineSource::Vision : calibration::LineSource::Lsd;
 }
 
 void Calibrator::reset() {
@@ -104,12 +114,14 @@ void Calibrator::update() {
       if (request.viewId == status.last.viewId || image.camera != request.camera || !image.valid()) break;
       // The sample is measured against the uncalibrated zero: the solve estimates the offsets
       // from there.
+      const auto t0 = std::chrono::steady_clock::now();
       const calibration::ExtractionResult r = extract(image, CameraCalibration{});
       if (!r.sample && isStillnessReason(r.reason)) {
         status.last.reason = r.reason;  // not this image; the next one may do
         break;
       }
-      status.last = {request.viewId, r.sample.has_value(), r.sample ? "" : r.reason, image.timestamp};
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      status.last = {request.viewId, r.sample.has_value(), r.sample ? "" : r.reason, image.timestamp, ms, r.source};
       if (r.sample) {
         samples_.push_back(*r.sample);
         ++status.samples[static_cast<int>(image.camera)];
@@ -127,7 +139,17 @@ void Calibrator::update() {
       status.converged = status.accepted = false;
       status.reason.clear();
       try {
+        status.otherSolver.reset();
         const calibration::CalibrationSolution s = calibration::solveCalibration(samples_, solver_);
+        status.solution = s;
+        if (params_.compareSolvers && !s.used.empty()) {
+          std::vector<calibration::CalibrationSample> used;
+          for (int i : s.used) used.push_back(samples_[static_cast<std::size_t>(i)]);
+          const calibration::SolverKind other = solver_.solver == calibration::SolverKind::GaussNewton
+                                                    ? calibration::SolverKind::Ceres
+                                                    : calibration::SolverKind::GaussNewton;
+          status.otherSolver = calibration::solveWith(other, calibration::CalibrationCost(used, solver_.cost), solver_);
+        }
         status.offsets = s.offsets;
         status.converged = s.solver.converged;
         status.accepted = s.accepted;
@@ -139,8 +161,12 @@ void Calibrator::update() {
             status.accepted = false;
             status.reason = "implausible: an offset beyond " + std::to_string(params_.maxOffsetDeg).substr(0, 4) + " deg";
           }
+        status.solution.accepted = status.accepted;
+        status.solution.reason = status.reason;
       } catch (const Error& e) {
         status.reason = e.what();
+        status.solution = {};
+        status.solution.reason = status.solution.solver.message = e.what();
       }
       debug(kCalibration, [&] {
         const auto a = status.offsets.toArray();

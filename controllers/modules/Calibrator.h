@@ -6,6 +6,7 @@
 // offsets by least squares over all samples, applies an accepted solution (CalibrationStatus:
 // CameraCalibrationProvider in motion switches every camera matrix to it) and verifies it on a
 // new view. A new challenge start (ChallengeMode::modeId) or Reset forgets everything.
+#include <string>
 #include <vector>
 
 #include "perception/CameraCalibration.h"
@@ -33,6 +34,9 @@ class Calibrator : public Module<Calibrator,
     int minSamplesPerCamera = 3;
     double maxRmsAngleDeg = 0.15;  // acceptance of a solution (perception/calibration/Calibrator.h)
     double maxRmsDepthM = 0.006;
+    std::string solver = "gauss-newton";  // or "ceres" (not in nao-soccer-robot)
+    std::string lines = "lsd";            // the image's line segments: "lsd" (OpenCV's LSD) or "vision" first
+    bool compareSolvers = false;          // also solve the used samples with the other solver (a check)
   };
 
   explicit Calibrator(const ModuleContext& context = {});
@@ -64,5 +68,8 @@ void describe(V& v, modules::Calibrator::Params& p) {
   v("minSamplesPerCamera", p.minSamplesPerCamera, 2, 100);
   v("maxRmsAngleDeg", p.maxRmsAngleDeg, 0.001, 10.0);
   v("maxRmsDepthM", p.maxRmsDepthM, 0.0001, 1.0);
+  v("solver", p.solver, {"gauss-newton", "ceres"});
+  v("lines", p.lines, {"lsd", "vision"});
+  v("compareSolvers", p.compareSolvers);
 }
 }  // namespace nao

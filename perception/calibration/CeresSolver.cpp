@@ -17,6 +17,8 @@ struct Residuals {
 
 }  // namespace
 
+bool ceresAvailable() { return true; }
+
 SolverResult solveCeres(const CalibrationCost& cost, const Params& start, const CeresOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   SolverResult result;

@@ -12,6 +12,8 @@ struct CeresOptions {
   double gradientTolerance = 1e-15;
 };
 
+// False in an executable built without Ceres (CeresSolverAbsent.cpp: nao-soccer-robot).
+bool ceresAvailable();
 SolverResult solveCeres(const CalibrationCost& cost, const Params& start = {}, const CeresOptions& options = {});
 
 }  // namespace nao::calibration

@@ -5,6 +5,8 @@
 
 namespace nao::calibration {
 
+bool ceresAvailable() { return false; }
+
 SolverResult solveCeres(const CalibrationCost&, const Params&, const CeresOptions&) {
   throw Error("--solver", "ceres is not built into this executable (nao-soccer-robot); use gauss-newton");
 }

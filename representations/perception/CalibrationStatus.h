@@ -4,9 +4,11 @@
 // Previous<CalibrationStatus>); CameraCalibrationProvider (motion) adopts `applied` when
 // `appliedId` changes, so every camera matrix from then on uses the new offsets.
 #include <array>
+#include <optional>
 #include <string>
 
 #include "perception/CameraCalibration.h"
+#include "perception/calibration/Calibrator.h"
 
 namespace nao {
 
@@ -17,6 +19,8 @@ struct CalibrationStatus {
     bool accepted = false;
     std::string reason;  // why not
     double imageTime = 0;
+    double extractMs = 0;  // wall time from image to sample or verdict (diagnostics)
+    std::string source;    // where the sample's segments came from: lsd or vision
   } last;
   int solutionId = 0;  // counts the solves
   CameraCalibration offsets;  // the last solution
@@ -26,6 +30,8 @@ struct CalibrationStatus {
   int appliedId = 0;   // a new id: CameraCalibrationProvider switches to `applied`
   CameraCalibration applied;
   double verifyAngleDeg = -1;  // the check after applying; -1: not verified
+  calibration::CalibrationSolution solution;  // the last solve in full (samples used, dropped, residuals)
+  std::optional<calibration::SolverResult> otherSolver;  // Calibrator.compareSolvers: the other solver, same samples
 };
 
 }  // namespace nao

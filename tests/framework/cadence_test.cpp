@@ -262,9 +262,10 @@ TEST(CadenceThreads, MotionGoesOnWhileASlowCognitionRunsAndNewestImagesWin) {
   EXPECT_EQ(backend.answers, backend.cycles);
   ASSERT_GE(SlowBehavior::runs, 3);
   // Motion answered on while each 60 ms cognition run went on (at 4 ms a cycle about 15 answers;
-  // lock-step would give 0). At least 2: under CI's parallel tests the scheduler may hold the
-  // motion thread back for some of its slots (the deadline itself is nao_cognition_test's, alone).
-  EXPECT_GE(SlowBehavior::minAnswersDuring, 2);
+  // lock-step would give 0). At least 1: under CI's parallel ASan tests on 2 loaded cores the
+  // scheduler has held the motion thread back for all but one of its slots (measured at
+  // f140cbd); the deadline itself is nao_cognition_test's, alone.
+  EXPECT_GE(SlowBehavior::minAnswersDuring, 1);
   // Each image came with the exchange of the cycle it arrived in, not a later one.
   EXPECT_LT(SlowBehavior::maxSnapshotLag, 1e-9);
   // Every image was processed or dropped for a newer one, but the one still waiting at the stop.

@@ -29,6 +29,7 @@ struct Sample {
   double speed = 1.0;
   int count = 3;
   bool enabled = true;
+  std::string mode = "fast";
   Inner inner;
 };
 template <class V>
@@ -40,6 +41,7 @@ void describe(V& v, Sample& p) {
   v("speed", p.speed, 0.0, 10.0);
   v("count", p.count, 1, 100);
   v("enabled", p.enabled);
+  v("mode", p.mode, {"fast", "slow"});
   v("inner", p.inner);
 }
 
@@ -93,6 +95,9 @@ TEST(Parameters, WrongTypes) {
   EXPECT_EQ(errorOf(R"({"enabled": 1})"), "sample.json: enabled: must be true or false");
   EXPECT_EQ(errorOf(R"({"inner": 3})"), "sample.json: inner: must be an object");
   EXPECT_EQ(errorOf(R"({"speed": "NaN"})"), "sample.json: speed: must be a number");
+  EXPECT_EQ(errorOf(R"({"mode": "medium"})"), "sample.json: mode: must be one of fast, slow, not 'medium'");
+  EXPECT_EQ(errorOf(R"({"mode": 2})"), "sample.json: mode: must be one of fast, slow");
+  EXPECT_EQ(errorOf(R"({"mode": "slow"})"), "");
 }
 
 TEST(Parameters, NotFiniteAndOutOfRange) {
