@@ -8,6 +8,8 @@
 #include <iostream>
 #include <random>
 
+#include <unistd.h>
+
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
@@ -124,9 +126,11 @@ int calibrateCommand(const CalibrateOptions& options) {
   o.imagesDir = options.images;
   DebugSink debug(options.debug);
   o.debug = debug.channels();
-  o.progress = [](double t) { std::fprintf(stderr, "calibrate: %.0f s of the phase\r", t); };
+  const std::size_t limit = static_cast<std::size_t>(o.timeLimit);
+  o.progress = [limit](double t) { progress("calibrate: simulated seconds of the phase", static_cast<std::size_t>(t), limit); };
 
   const sim::CalibrationRunResult r = sim::runCalibration(o);
+  if (isatty(fileno(stderr))) std::fputc('\n', stderr);  // after the progress line
   const auto err = difference(r.estimate, r.truth);
   std::fprintf(stderr, "calibrate: %s after %.1f s (walked %.2f m); %d of %zu views gave samples, %s %s in %.3f s, %s; "
                "reprojection %.2f px (before %.2f px)\n",
