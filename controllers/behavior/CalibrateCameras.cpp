@@ -38,9 +38,9 @@ void CalibrateCameras::planFrom(const RobotPose& pose) {
   const int sideSign = pose.pose.y >= 0 ? 1 : -1;
   side_ = calibration::ownGoalBoxSide(field_, sideSign);
   position_ = calibration::calibrationPosition(side_);
-  views_.clear();
+  // Aligning looks at the box side as the plan's straight top view from there does.
   for (const calibration::CalibrationView& v : calibration::planViews(side_, position_.head<2>(), stand_))
-    views_.push_back({v, 0, false});
+    if (v.camera == CameraId::Top && std::abs(v.headYaw) < 1e-6) alignPitch_ = v.headPitch;
 }
 
 Pose2 CalibrateCameras::turnTarget(double heading) const {
@@ -79,10 +79,7 @@ void CalibrateCameras::align(const BehaviorInput& in, const CameraPercepts& perc
   const double t = in.time;
   out.lookActive = false;
   out.head.mode = HeadMotionRequest::Mode::Angles;
-  // The top camera's view of the box side from the calibration position: the plan's straight view.
-  const std::vector<calibration::CalibrationView> plan = calibration::planViews(side_, position_.head<2>(), stand_);
-  for (const auto& v : plan)
-    if (v.camera == CameraId::Top && std::abs(v.headYaw) < 1e-6) out.head.pitch = v.headPitch;
+  out.head.pitch = alignPitch_;
   out.head.yaw = 0;
   if (alignWalking_) {
     out.motion.motion = MotionType::WalkTo;
@@ -201,14 +198,10 @@ CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const Ca
     case State::Align:
       align(in, percepts, out);
       break;
-    case State::Turn:
-    case State::Aim: {
-      const PlannedView& p = views_[current_];
-      turnAndAim(p);
-      if (machine_.state == State::Turn && machine_.timeIn(t) >= params_.turnSettle && in.motion.walkToReached)
-        machine_.go(State::Aim, t);
-      // The head is at the view's angles once the calibrator finds it still: collect at once.
-      if (machine_.state == State::Aim) machine_.go(State::Collect, t);
+    case State::Turn: {
+      turnAndAim(views_[current_]);
+      // Turned: collect at once (the calibrator waits for the head and torso to hold still).
+      if (machine_.timeIn(t) >= params_.turnSettle && in.motion.walkToReached) machine_.go(State::Collect, t);
       break;
     }
     case State::Collect: {

@@ -49,7 +49,7 @@ class CalibrateCameras {
     double alignAngle = 0.05;      // rad: ... and the line this near square to the view
     int alignSteps = 4;            // alignment walks at most; then it goes on from where it stands
   };
-  enum class State { Localize, GoToPosition, Align, Turn, Aim, Collect, Solve, Apply, Verify, Report, Done };
+  enum class State { Localize, GoToPosition, Align, Turn, Collect, Solve, Apply, Verify, Report, Done };
 
   // What it asks for. `lookActive` while localizing and walking (the caller's LookActive
   // chooses the head then); `report` once, with the text to say.
@@ -118,6 +118,7 @@ class CalibrateCameras {
   double alignSince_ = 0;
   bool alignWalking_ = false;
   Pose2 alignTarget_;  // odometry frame
+  double alignPitch_ = 0;  // rad: the head pitch of the plan's straight top view
   Summary summary_;
 };
 

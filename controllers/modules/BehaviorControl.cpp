@@ -24,7 +24,6 @@ const char* calibrateStateName(behavior::CalibrateCameras::State s) {
     case S::GoToPosition: return "go_to_position";
     case S::Align: return "align";
     case S::Turn: return "turn";
-    case S::Aim: return "aim";
     case S::Collect: return "collect";
     case S::Solve: return "solve";
     case S::Apply: return "apply";
