@@ -45,15 +45,6 @@ std::array<double, 6> difference(const CameraCalibration& a, const CameraCalibra
   return d;
 }
 
-// The calibration looks at the goal box: a field file without one is bad input for it.
-FieldDimensions calibrationFieldFrom(const CommonOptions& common) {
-  FieldDimensions f = fieldFrom(common);
-  if (!f.hasGoalBox)
-    throw Error(common.field.empty() ? dataPath("config/field_dimensions.json") : common.field,
-                "field.goalBoxAreaLength/goalBoxAreaWidth: missing, and the calibration looks at the goal box");
-  return f;
-}
-
 nlohmann::json runJson(const sim::CalibrationRunResult& r) {
   nlohmann::json views = nlohmann::json::array();
   for (const auto& v : r.views) {

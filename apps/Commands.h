@@ -30,6 +30,7 @@ int kickCommand(const KickOptions& o);
 int trainBallCommand(const TrainBallOptions& o);
 int trainFrictionCommand(const TrainFrictionOptions& o);
 int calibrateCommand(const CalibrateOptions& o);
+int challengeCommand(const ChallengeCommandOptions& o);
 int modulesCommand(const ModulesOptions& o);
 
 }  // namespace nao::cli

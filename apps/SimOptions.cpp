@@ -61,4 +61,13 @@ nlohmann::json lightingJson(const sim::Lighting& l) {
           {"ambient", l.ambient},    {"noise", l.noise}};
 }
 
+// The calibration looks at the goal box: a field file without one is bad input for it.
+FieldDimensions calibrationFieldFrom(const CommonOptions& common) {
+  FieldDimensions f = fieldFrom(common);
+  if (!f.hasGoalBox)
+    throw Error(common.field.empty() ? dataPath("config/field_dimensions.json") : common.field,
+                "field.goalBoxAreaLength/goalBoxAreaWidth: missing, and the calibration looks at the goal box");
+  return f;
+}
+
 }  // namespace nao::cli

@@ -12,6 +12,8 @@ namespace nao::cli {
 // The field file given with --field (or `fallback`), with every declared place checked on it.
 FieldDimensions fieldFrom(const CommonOptions& common, const std::string& fallback = "config/field_dimensions.json");
 sim::Lighting lightingFrom(const std::string& spec);
+// fieldFrom for the commands that look at the goal box: a field file without one is refused.
+FieldDimensions calibrationFieldFrom(const CommonOptions& common);
 // "sweep" (every preset of the sweep) or one lighting.
 std::vector<sim::Lighting> lightingsFrom(const std::string& spec);
 // Compiles the scene with the robot model `model` ("" = the default, not checked): a broken

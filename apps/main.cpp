@@ -36,6 +36,7 @@ void bind(CommandLine& cl) {
   to("train ball", nao::cli::trainBallCommand, o.trainBall);
   to("train friction", nao::cli::trainFrictionCommand, o.trainFriction);
   to("calibrate", nao::cli::calibrateCommand, o.calibrate);
+  to("calibration-challenge", nao::cli::challengeCommand, o.challenge);
   to("modules", nao::cli::modulesCommand, o.modules);
 }
 

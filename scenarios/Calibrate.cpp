@@ -24,6 +24,7 @@
 #include "sim/ImageIO.h"
 #include "sim/SimBackend.h"
 #include "sim/World.h"
+#include "scenarios/ChallengeSession.h"
 
 namespace nao::sim {
 namespace {
@@ -162,48 +163,56 @@ CameraImage shieldFrame(const World& world, CameraId cam, double time) {
   return img;
 }
 
+ChallengeSetup challengeSetup(const CalibrationRunOptions& o) {
+  ChallengeSetup setup;
+  setup.field = o.field;
+  setup.robotModel = o.robotModel;
+  setup.miscalibration = o.miscalibration;
+  setup.lighting = o.lighting;
+  setup.side = o.side;
+  setup.seed = o.seed;
+  setup.randomize = o.randomize;
+  setup.calibrator = o.calibrator;
+  setup.debug = o.debug;
+  return setup;
+}
+
+std::array<Eigen::Vector2d, 2> phaseOneBalls(const FieldDimensions& field, std::uint64_t seed) {
+  // Roughly in the centre of each half, clear of lines (the rules' phase 1).
+  std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ULL + 3);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  std::array<Eigen::Vector2d, 2> balls;
+  for (int i = 0; i < 2; ++i) balls[i] = Eigen::Vector2d((i ? 1 : -1) * field.length / 4 + jitter(rng), jitter(rng));
+  return balls;
+}
+
 CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
-  const auto wall0 = std::chrono::steady_clock::now();
+  ChallengeSession session(challengeSetup(o));
   CalibrationRunResult result;
+  runCalibrationPhase(session, o, result);
+  return result;
+}
+
+void runCalibrationPhase(ChallengeSession& session, const CalibrationRunOptions& o, CalibrationRunResult& result) {
+  const auto wall0 = std::chrono::steady_clock::now();
   result.truth = o.miscalibration;
+  result.headId = session.headId();
   if (!o.imagesDir.empty()) io::makeDirectories(o.imagesDir);
+  World& world = session.world();
+  RobotProgram& program = session.program();
 
-  // The referee places the robot at the challenge's start.
-  const Eigen::Vector3d start = cal::initialPosition(o.field, o.side);
-  SceneSpec spec;
-  spec.field = o.field;
-  spec.robotModel = o.robotModel;
-  spec.robots = {start};
-  World world(spec, o.seed);
-  world.setMiscalibration(0, o.miscalibration);
-  world.placeRobot(0, start, StandController::standPosture());
-  SimBackend backend(world, 0, true);
-  result.headId = backend.robotInfo().headId;
-  CameraRenderer renderer(world.model());
-  std::mt19937_64 noiseRng(o.seed ^ 0x5deece66dULL);
-  bool shield = o.shieldSeconds > 0;
-  backend.setImageSource([&](CameraId cam, double time) {
-    if (shield) return shieldFrame(world, cam, time);
-    const CameraResolution res = world.cameraResolution(cam);
-    return renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width, res.height,
-                                o.lighting, cam, time, noiseRng);
-  });
-
-  // The robot program as on a robot that has never been calibrated: no stored offsets.
-  RobotProgramConfig config;
-  config.field = o.field;
-  config.calibrator = o.calibrator;
-  config.debug = o.debug;
-  RobotProgram program(config);
-
-  // Every view the calibrator judged: the image it judged, with the truth at its exposure.
-  std::vector<Capture> captures;
-  int lastView = -1;
-  program.setCognitionObserver([&](const CameraImage& image, const Blackboard& cognition) {
+  // Every view the calibrator judged: the image it judged, with the truth at its exposure. The
+  // observer stays with the session (it outlives this phase), so its state is shared.
+  struct Views {
+    std::vector<Capture> captures;
+    int lastView = -1;
+  };
+  auto views = std::make_shared<Views>();
+  session.addCognitionObserver([views, &world, &result](const CameraImage& image, const Blackboard& cognition) {
     if (!cognition.has<CalibrationStatus>()) return;
     const CalibrationStatus& status = cognition.read<CalibrationStatus>();
-    if (status.last.viewId == lastView || status.last.imageTime != image.timestamp) return;
-    lastView = status.last.viewId;
+    if (status.last.viewId == views->lastView || status.last.imageTime != image.timestamp) return;
+    views->lastView = status.last.viewId;
     Capture cap;
     cap.image = image;
     cap.sensors = world.sensors(0);
@@ -224,59 +233,43 @@ CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
     result.views.push_back(rec);
     if (status.last.accepted)
       result.accepted.push_back({image, cap.sensors.joints.position, cap.sensors.inertial.angle});
-    captures.push_back(std::move(cap));
+    views->captures.push_back(std::move(cap));
   });
+  std::vector<Capture>& captures = views->captures;
 
-  const Blackboard& motion = program.blackboard();
-  auto cycle = [&] {
-    const Eigen::Vector3d before = world.robotPose(0);
-    if (!program.cycle(backend)) throw Error("calibration", "the simulated robot stopped: " + backend.stopReason());
-    const Eigen::Vector3d after = world.robotPose(0);
-    const double step = (after.head<2>() - before.head<2>()).norm();
-    result.maxStep = std::max(result.maxStep, step);
-    result.pathLength += step;
-    const Eigen::Isometry3d torso = world.torsoPose(0);
-    if (std::acos(std::clamp(torso.linear()(2, 2), -1.0, 1.0)) > 45 * kDeg || torso.translation().z() < 0.15)
-      result.fell = true;
-  };
-  auto note = [&](const std::string& kind, const std::string& text) { result.events.push_back({world.time(), kind, text}); };
-  // The shield, then the start signal: chest + head front held 1.2 s; the rules' clock starts
-  // when the hold reaches 1 s (the robot's own rule fires then).
-  note("shield", "on");
-  while (world.time() < o.shieldSeconds) cycle();
-  shield = false;
-  note("shield", "off");
-  world.setTouch(0, ChestButton, 1.0);
-  world.setTouch(0, HeadFront, 1.0);
-  const double holdStart = world.time();
-  note("button", "chest + head front");
-  while (world.time() < holdStart + 1.2) cycle();
-  world.setTouch(0, ChestButton, 0.0);
-  world.setTouch(0, HeadFront, 0.0);
-  const double phaseStart = holdStart + 1.0;
-  int lastSpeech = motion.read<SpeechRequest>().id;
-  double nextProgress = 0;
-  while (world.time() - phaseStart < o.timeLimit) {
-    cycle();
-    const SpeechRequest& speech = motion.read<SpeechRequest>();
-    if (speech.id != lastSpeech) {
-      lastSpeech = speech.id;
-      note("speech", speech.text);
-      // The report counts when the robot says it with an arm up (truth: a hand above the head).
-      const double headZ = world.cameraPose(0, CameraId::Top).translation().z();
-      const bool armUp = world.handPosition(0, false).z() > headZ || world.handPosition(0, true).z() > headZ;
-      if (speech.text == "Calibration finished" && armUp) {
-        result.finished = true;
-        break;
-      }
-    }
-    if (o.progress && world.time() >= nextProgress) {
-      o.progress(world.time() - phaseStart);
-      nextProgress = std::floor(world.time()) + 1;
+  // Two balls near the halves' centres, the shield, then the start signal: chest + head front
+  // held 1.2 s; the rules' clock starts when the hold reaches 1 s (the robot's own rule fires then).
+  const std::size_t firstEvent = session.events().size();
+  session.placeBalls(o.balls ? *o.balls : phaseOneBalls(o.field, o.seed));
+  if (o.shieldSeconds > 0) {
+    session.setShield(true);
+    session.runFor(o.shieldSeconds);
+    session.setShield(false);
+  }
+  const double phaseStart = session.startMode(false);
+  if (o.progress) session.progress = [&](double t) { o.progress(t - phaseStart); };
+  const double pathBefore = session.pathLength();
+  while (const std::optional<ChallengeReport> report = session.untilReport(phaseStart + o.timeLimit)) {
+    if (report->text == "Calibration finished") {
+      result.finished = true;
+      break;
     }
   }
-  result.phaseSeconds = world.time() - phaseStart;
-  for (auto& e : result.events) e.t -= phaseStart;
+  session.progress = nullptr;
+  result.phaseSeconds = session.time() - phaseStart;
+  result.terminated = session.terminated();
+  if (result.terminated.empty() && !result.finished) {
+    result.terminated = "phase_time";
+    session.note("termination", "phase_time: no \"Calibration finished\" within the phase's time");
+  }
+  result.pathLength = session.pathLength() - pathBefore;
+  result.maxStep = session.maxStep();
+  result.fell = session.falls() > 0;
+  for (std::size_t k = firstEvent; k < session.events().size(); ++k) {
+    ChallengeEvent e = session.events()[k];
+    e.t -= phaseStart;
+    result.events.push_back(e);
+  }
 
   const CalibrationStatus& status = program.cognitionBoard().read<CalibrationStatus>();
   result.solution = status.solution;
@@ -329,7 +322,6 @@ CalibrationRunResult runCalibration(const CalibrationRunOptions& o) {
     }
   }
   result.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  return result;
 }
 
 CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {

@@ -26,6 +26,7 @@
 #include "robot/CameraImage.h"
 #include "robot/JointIds.h"
 #include "robot/Debug.h"
+#include "scenarios/ChallengeReferee.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -43,6 +44,8 @@ struct CalibrationRunOptions {
   std::string imagesDir;                  // non-empty: every view annotated, and the Fig. 2 pictures
   double shieldSeconds = 2;               // the camera shield before the start (dark frames)
   double timeLimit = 600;                 // s of the phase (the rules' 10 min)
+  bool randomize = false;                 // a foreign robot (ChallengeSetup::randomize)
+  std::optional<std::array<Eigen::Vector2d, 2>> balls;  // phase 1's balls (else near the halves' centres, from seed)
   std::function<void(double simTime)> progress;  // about once per simulated second
   DebugChannels* debug = nullptr;         // the robot program's debug channels (not owned); null: none
 };
@@ -58,11 +61,8 @@ struct ViewRecord {
   Eigen::Vector3d truePose = Eigen::Vector3d::Zero();  // where the robot stood (truth: x, y, theta)
 };
 
-// A moment the referee noted (the buttons, what the robot said).
-struct CalibrationEvent {
-  double t = 0;  // s of simulated time since the placement
-  std::string kind, text;
-};
+// A moment the referee noted (the buttons, what the robot said); t from the phase's start.
+using CalibrationEvent = ChallengeEvent;
 
 struct CalibrationRunResult {
   std::string headId;                     // the simulated robot's head id (the calibration store's key)
@@ -84,7 +84,8 @@ struct CalibrationRunResult {
   bool finished = false;
   double phaseSeconds = 0;
   double pathLength = 0, maxStep = 0;     // m walked (truth), the largest move in one 12 ms cycle
-  bool fell = false;                      // torso tilted beyond 45 deg or below 0.15 m
+  bool fell = false;                      // the referee saw a fall (ChallengeReferee)
+  std::string terminated;                 // the referee's termination reason ("" none; phase_time: no report in time)
   std::vector<CalibrationEvent> events;
   double wallSeconds = 0;
   std::vector<std::string> imagesWritten;
@@ -99,12 +100,20 @@ struct CalibrationRunResult {
 };
 
 class World;
+class ChallengeSession;
 // The camera shield the referee holds over the robot: a dark frame (YUYV black) in place of a render.
 CameraImage shieldFrame(const World& world, CameraId camera, double time);
 
 // Phase 1 of the challenge by the robot program. Not finished within the time limit: the
 // result says so (finished false) with whatever the robot had done.
 CalibrationRunResult runCalibration(const CalibrationRunOptions& options);
+// The same on a session the caller keeps (the challenge goes on to phase 2 with it).
+void runCalibrationPhase(ChallengeSession& session, const CalibrationRunOptions& options, CalibrationRunResult& result);
+// The session a calibration run's options describe.
+struct ChallengeSetup;
+ChallengeSetup challengeSetup(const CalibrationRunOptions& options);
+// Phase 1's balls: roughly in the centre of each half (own first), from the seed.
+std::array<Eigen::Vector2d, 2> phaseOneBalls(const FieldDimensions& field, std::uint64_t seed);
 
 struct CalibrationEvalOptions {
   int trials = 100;

@@ -114,4 +114,33 @@ void drawEstimates(cv::Mat& view, const FieldModel& field, const EstimateOverlay
                cv::LINE_AA, kShift);
 }
 
+namespace {
+cv::Point fieldPixel(const FieldModel& field, const Eigen::Vector2d& p, int pixelsPerMetre) {
+  const FieldDimensions& d = field.dims;
+  const double cx = d.length / 2 + d.borderStripWidth, cy = d.width / 2 + d.borderStripWidth;
+  return cv::Point(static_cast<int>(std::lround((p.x() + cx) * pixelsPerMetre * (1 << kShift))),
+                   static_cast<int>(std::lround((cy - p.y()) * pixelsPerMetre * (1 << kShift))));
+}
+}  // namespace
+
+void drawPath(cv::Mat& view, const FieldModel& field, const std::vector<Eigen::Vector2d>& points, const cv::Scalar& rgb,
+              int pixelsPerMetre) {
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if (points[i - 1].allFinite() && points[i].allFinite())
+      cv::line(view, fieldPixel(field, points[i - 1], pixelsPerMetre), fieldPixel(field, points[i], pixelsPerMetre), rgb,
+               2, cv::LINE_AA, kShift);
+}
+
+void drawMarker(cv::Mat& view, const FieldModel& field, const Eigen::Vector2d& point, const cv::Scalar& rgb,
+                const std::string& label, int pixelsPerMetre) {
+  if (!point.allFinite()) return;
+  const cv::Point c = fieldPixel(field, point, pixelsPerMetre);
+  const int arm = 6 << kShift;
+  cv::line(view, c - cv::Point(arm, arm), c + cv::Point(arm, arm), rgb, 2, cv::LINE_AA, kShift);
+  cv::line(view, c - cv::Point(arm, -arm), c + cv::Point(arm, -arm), rgb, 2, cv::LINE_AA, kShift);
+  if (!label.empty())
+    cv::putText(view, label, cv::Point((c.x >> kShift) + 8, (c.y >> kShift) - 8), cv::FONT_HERSHEY_SIMPLEX, 0.45, rgb, 1,
+                cv::LINE_AA);
+}
+
 }  // namespace nao::sim

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "perception/FieldDimensions.h"
@@ -25,5 +26,12 @@ struct EstimateOverlay {
   std::optional<Eigen::Vector2d> ball;  // field frame
 };
 void drawEstimates(cv::Mat& view, const FieldModel& field, const EstimateOverlay& estimate, int pixelsPerMetre = 80);
+
+// A walked path (field points in order) and a labelled cross (a report against its truth),
+// over a drawFieldView picture of the same field and scale. Colours in RGB.
+void drawPath(cv::Mat& view, const FieldModel& field, const std::vector<Eigen::Vector2d>& points, const cv::Scalar& rgb,
+              int pixelsPerMetre = 80);
+void drawMarker(cv::Mat& view, const FieldModel& field, const Eigen::Vector2d& point, const cv::Scalar& rgb,
+                const std::string& label, int pixelsPerMetre = 80);
 
 }  // namespace nao::sim

@@ -70,6 +70,7 @@ struct World::Impl {
     int imuSite = -1;
     std::array<int, 2> sole{};  // left, right
     std::array<int, 2> hand{};  // left, right (bodies)
+    std::array<int, 2> soleGeom{-1, -1};  // left, right: the foot's box
     std::array<int, NumFsr> fsrSite{};
     int gyroAdr = -1, accelAdr = -1;
     double mass = 0;
@@ -103,6 +104,28 @@ struct World::Impl {
   SensorNoise noise;
   mutable std::mt19937_64 rng;
   std::array<int, mjNWARNING> warningsSeen{};
+  std::vector<World::BallContact> ballContacts;
+  std::vector<std::pair<int, int>> touching, touchingBefore;  // (robot, ball) in contact this / the last step
+
+  // Robot-ball contacts of this step; a pair not in contact in the step before is a new touch.
+  void noteBallContacts() {
+    touching.clear();
+    for (int i = 0; i < d->ncon; ++i) {
+      const mjContact& c = d->contact[i];
+      for (int k = 0; k < 2; ++k) {
+        const int robotGeom = k ? c.geom2 : c.geom1, other = k ? c.geom1 : c.geom2;
+        if (geomRobot[robotGeom] < 0) continue;
+        for (std::size_t b = 0; b < balls.size(); ++b)
+          if (m->geom_bodyid[other] == balls[b].body) touching.emplace_back(geomRobot[robotGeom], static_cast<int>(b));
+      }
+    }
+    std::sort(touching.begin(), touching.end());
+    touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
+    for (const auto& p : touching)
+      if (std::find(touchingBefore.begin(), touchingBefore.end(), p) == touchingBefore.end())
+        ballContacts.push_back({p.first, p.second, d->time});
+    touchingBefore.swap(touching);
+  }
 
   ~Impl() {
     if (d) mj_deleteData(d);
@@ -198,6 +221,7 @@ struct World::Impl {
       geomRobot[g] = index;
       if (isDescendant(b, lFoot)) geomFoot[g] = 0;
       if (isDescendant(b, rFoot)) geomFoot[g] = 1;
+      if (geomFoot[g] >= 0 && m->geom_type[g] == mjGEOM_BOX && r.soleGeom[geomFoot[g]] < 0) r.soleGeom[geomFoot[g]] = g;
     }
     robots.push_back(r);
   }
@@ -415,6 +439,7 @@ void World::step() {
   I.applyRollingResistance();
   mj_step(I.m, I.d);
   I.checkWarnings();
+  if (!I.balls.empty()) I.noteBallContacts();
   for (Impl::Robot& r : I.robots) {
     const Eigen::Vector3d g(I.d->sensordata + r.gyroAdr), a(I.d->sensordata + r.accelAdr);
     if (r.gyroHistory.size() < static_cast<std::size_t>(I.stepsPerCycle)) {
@@ -658,6 +683,29 @@ Eigen::Vector3d World::ballPosition(int ball) const {
 
 Eigen::Vector3d World::handPosition(int robot, bool left) const {
   return Eigen::Vector3d(impl_->d->xpos + 3 * impl_->robot(robot).hand[left ? 0 : 1]);
+}
+
+std::array<Eigen::Vector3d, 8> World::soleCorners(int robot) const {
+  const Impl& I = *impl_;
+  std::array<Eigen::Vector3d, 8> corners{};
+  for (int side = 0; side < 2; ++side) {
+    const int g = I.robot(robot).soleGeom[side];
+    if (g < 0) throw Error(I.modelName, "the robot has no box geom on its " + std::string(side ? "right" : "left") + " foot");
+    const Eigen::Vector3d centre(I.d->geom_xpos + 3 * g);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> rot(I.d->geom_xmat + 9 * g);
+    const double* size = I.m->geom_size + 3 * g;
+    int k = 0;
+    for (double sx : {-1.0, 1.0})
+      for (double sy : {-1.0, 1.0})
+        corners[static_cast<std::size_t>(4 * side + k++)] = centre + rot * Eigen::Vector3d(sx * size[0], sy * size[1], -size[2]);
+  }
+  return corners;
+}
+
+std::vector<World::BallContact> World::takeBallContacts() {
+  std::vector<BallContact> out;
+  out.swap(impl_->ballContacts);
+  return out;
 }
 
 Eigen::Vector3d World::ballVelocity(int ball) const {

@@ -4,10 +4,12 @@
 // control with stiffness, torque and speed limits). Sensors are simulated from the state; the
 // injected miscalibration lives here (the hardware), never in the robot program.
 // Ground truth is for scenarios and tests only.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -91,6 +93,15 @@ class World {
   Eigen::Vector3d ballPosition(int ball) const;
   Eigen::Vector3d ballVelocity(int ball) const;
   Eigen::Vector3d handPosition(int robot, bool left) const;  // the hand body's origin (the wrist), field frame
+  // The four bottom corners of each sole's box (left foot's, then the right's), field frame.
+  std::array<Eigen::Vector3d, 8> soleCorners(int robot) const;
+  // A robot touched a ball: every touch that began since the last call (checked in every
+  // physics step, so a touch shorter than a robot cycle counts), oldest first.
+  struct BallContact {
+    int robot = 0, ball = 0;
+    double time = 0;  // s, simulated
+  };
+  std::vector<BallContact> takeBallContacts();
 
  private:
   struct Impl;

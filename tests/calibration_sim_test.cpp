@@ -5,7 +5,8 @@
 // within 1 px RMS, the phase within 120 s), that the robot walked there (a continuous path, no
 // jump), and no offsets -> zero. Then the `calibrate` command end to end: the estimate against
 // the injected offsets, the paper's Fig. 2 pictures (projected field lines over paint after, not
-// before), the stored result, the same result for the same seed, and bad options.
+// before), the stored result, and bad options (challenge_sim_test checks the same result for
+// the same seed on the whole challenge).
 #include <gtest/gtest.h>
 
 
@@ -44,7 +45,7 @@ void expectWalkedAndReported(const CalibrationRunResult& r) {
 
 TEST(CalibrationSim, RandomOffsetsLightingAndSides) {
   CalibrationEvalOptions o;
-  o.trials = std::getenv("NAO_TEST_QUICK") ? 1 : 3;
+  o.trials = std::getenv("NAO_TEST_QUICK") ? 1 : 2;
   o.seed = 11;
   o.field = FieldDimensions::load(dataPath("config/field_dimensions.json"));
   o.lightings = Lighting::sweep(dataPath("config/lighting.json"));
@@ -186,10 +187,7 @@ TEST(CalibrateCommand, EstimatesPicturesStoreAndSameSeedSameResult) {
   EXPECT_LE(topBefore, topAfter - 0.3);
   EXPECT_LE(bottomBefore, bottomAfter - 0.3);
 
-  // Same seed, same result.
-  const CommandResult again = runCommand(common + " --json " + (dir / "b.json").string());
-  ASSERT_EQ(again.code, 0) << again.out;
-  EXPECT_EQ(readJson((dir / "b.json").string())["estimated_deg"], a["estimated_deg"]);
+  // (Same seed, same result: challenge_sim_test runs the whole challenge twice.)
   std::filesystem::remove_all(dir);
 }
 

@@ -18,6 +18,7 @@
 #include "perception/OwnBody.h"
 #include "perception/calibration/CalibrationViews.h"
 #include "representations/behavior/CalibrationRequest.h"
+#include "representations/modeling/FieldBalls.h"
 #include "representations/perception/CalibrationStatus.h"
 #include "robot/Paths.h"
 #include "tests/support/ModuleHarness.h"
@@ -262,7 +263,7 @@ struct BehaviorFixture {
     pose.valid = true;
     pose.covariance = Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
     h.fix(BallModel{}).fix(GameState{}).fix(FallState{}).fix(MotionInfo{}).fix(historyAt(1, Pose2())).fix(ChallengeMode{})
-        .fix(CameraCalibration{}).fix(CalibrationStatus{}).fix(CameraPercepts{});
+        .fix(CameraCalibration{}).fix(CalibrationStatus{}).fix(CameraPercepts{}).fix(FieldBalls{});
   }
   void run(const RobotPose& p, const BehaviorCommand& c) { h.fix(p).fix(c).run(); }
 };
@@ -330,6 +331,73 @@ TEST(BehaviorControlModule, CalibratesViewByViewFromTheStart) {
   EXPECT_EQ(std::set<int>(asked.begin(), asked.end()).size(), views.size()) << "one view id per view";
   EXPECT_EQ(f.h.get<CalibrationRequest>().action, CalibrationRequest::Action::Solve);
   EXPECT_EQ(f.h.get<MotionRequest>().motion, MotionType::Stand);
+}
+
+// In the evaluation mode: the own half's ball first. Walk to 0.9 m short of it facing it, stand
+// and look at it until 30 new observations are in, report its near median in millimetres with an
+// arm up; after the referee's tap, walk to the own goal's centre facing the field.
+TEST(BehaviorControlModule, ReportsTheOwnBallThenWalksToTheOwnGoalAfterTheTap) {
+  BehaviorFixture f;
+  ChallengeMode mode;
+  mode.mode = ChallengeMode::Mode::Evaluation;
+  mode.modeId = 1;
+  double t = 1;
+  RobotPose pose = f.pose;
+  pose.pose = Pose2(-3.2, -3.0, M_PI / 2);
+  pose.odometry = pose.pose;
+  FieldBalls balls;
+  balls.own.seen = true;
+  balls.own.support = 20;
+  balls.own.position = Eigen::Vector2d(-2, 0);
+  balls.own.lastSeen = t;
+  MotionInfo info;
+  auto step = [&] {
+    t += 1.0 / 30;
+    pose.time = t;
+    f.h.fix(historyAt(t, pose.odometry)).fix(info).fix(balls).fix(mode);
+    f.run(pose, BehaviorCommand{});
+  };
+  for (int i = 0; i < 60; ++i) step();  // settled and localized
+  const MotionRequest& walk = f.h.get<MotionRequest>();
+  ASSERT_EQ(walk.motion, MotionType::WalkTo);
+  const Eigen::Vector2d toBall = (Eigen::Vector2d(-2, 0) - Eigen::Vector2d(-3.2, -3.0)).normalized();
+  const Eigen::Vector2d observeAt = Eigen::Vector2d(-2, 0) - 0.9 * toBall;
+  EXPECT_NEAR(walk.walkTarget.x, observeAt.x(), 1e-6);
+  EXPECT_NEAR(walk.walkTarget.y, observeAt.y(), 1e-6);
+  EXPECT_NEAR(walk.walkTarget.theta, std::atan2(toBall.y(), toBall.x()), 1e-6);
+  // Arrived: it stands and looks at the ball; each image adds a near observation.
+  pose.pose = Pose2(observeAt.x(), observeAt.y(), std::atan2(toBall.y(), toBall.x()));
+  pose.odometry = pose.pose;
+  info.walkToReached = true;
+  balls.own.closePosition = Eigen::Vector2d(-2.013, 0.004);
+  balls.own.close = 40;
+  int images = 0;
+  for (; images < 100 && f.h.get<ArmMotionRequest>().raise == ArmMotionRequest::Arm::None; ++images) {
+    balls.own.lastSeen = t;
+    step();
+    if (images > 2) {
+      EXPECT_EQ(f.h.get<MotionRequest>().motion, MotionType::Stand);
+      EXPECT_EQ(f.h.get<HeadMotionRequest>().mode, HeadMotionRequest::Mode::LookAtFieldPoint);
+    }
+  }
+  EXPECT_GE(images, 30) << "reported before 30 observations";
+  info.armRaised = true;
+  for (int i = 0; i < 5; ++i) step();
+  EXPECT_EQ(f.h.get<SpeechRequest>().text, "The ball is at: -2013 4");
+  // The report held, the arm lowered: it waits for the tap, then walks to the own goal.
+  info.armRaised = false;
+  for (int i = 0; i < 90; ++i) step();
+  EXPECT_EQ(f.h.get<MotionRequest>().motion, MotionType::Stand);
+  const int id = f.h.get<MotionRequest>().walkTargetId;
+  mode.headTaps = 1;
+  info.walkToReached = false;
+  step();
+  step();
+  ASSERT_EQ(f.h.get<MotionRequest>().motion, MotionType::WalkTo);
+  EXPECT_NE(f.h.get<MotionRequest>().walkTargetId, id) << "a new target needs a new id";
+  EXPECT_NEAR(f.h.get<MotionRequest>().walkTarget.x, -4.5, 1e-6);
+  EXPECT_NEAR(f.h.get<MotionRequest>().walkTarget.y, 0, 1e-6);
+  EXPECT_NEAR(f.h.get<MotionRequest>().walkTarget.theta, 0, 1e-6);
 }
 
 TEST(BehaviorControlModule, SaysWhenTheRefereeStartsAChallengeMode) {

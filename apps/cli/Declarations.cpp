@@ -361,6 +361,18 @@ void CommandLine::declare() {
     });
   }
   {
+    ChallengeCommandOptions& k = o.challenge;
+    Command& c = leaf(root, "calibration-challenge", "the whole Autonomous Calibration Challenge, headless: the robot program calibrates itself (phase 1), then reports both balls and walks to three spots (phase 2), scored as the referee scores", k.common);
+    seedJsonField(c);
+    simOptions(c, k.sim);
+    c.choice("--start", k.start, {"left", "right", "seed"}, "the side line the robot starts on (seed: drawn from --seed)");
+    c.flag("--randomize", k.randomize, "a 'foreign' robot: link masses +-5%, joint offsets +-1 deg (the head's aside), floor friction 0.6-1.0");
+    c.number("--time-limit", k.timeLimit, 1, 600, "s", "each phase's time (the rules' 10 min; shorter for a quick look: a phase over it terminates the run)");
+    c.flag("--skip-calibration", k.skipCalibration, "no phase 1: phase 2 with the factory calibration (the fast, imprecise baseline)");
+    c.outputFolder("--images", k.images, "write the calibration's views, the before/after pictures and a top-down picture of the run");
+    debugOptions(c, k.debug);
+  }
+  {
     ModulesOptions& m = o.modules;
     Command& c = leaf(root, "modules", "every module of the robot program: cadence, requires, provides (or a Graphviz graph)", m.common);
     c.json();

@@ -152,6 +152,15 @@ struct CalibrateOptions {
   bool compare = false, save = false;
 };
 
+struct ChallengeCommandOptions {
+  CommonOptions common;
+  SimOptions sim{"default", "random", {}, ""};
+  DebugOptions debug;
+  std::string start = "seed", images;
+  bool randomize = false, skipCalibration = false;
+  double timeLimit = 600;
+};
+
 struct ModulesOptions {
   CommonOptions common;
   bool dot = false;
@@ -174,6 +183,7 @@ struct Options {
   TrainBallOptions trainBall;
   TrainFrictionOptions trainFriction;
   CalibrateOptions calibrate;
+  ChallengeCommandOptions challenge;
   ModulesOptions modules;
 };
 

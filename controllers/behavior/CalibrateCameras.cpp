@@ -29,7 +29,7 @@ void CalibrateCameras::restart(double time) {
   current_ = 0;
   round_ = 0;
   summary_ = {};
-  goTo_ = GoToPose(goToParams(params_));
+  goTo_.restart();
 }
 
 void CalibrateCameras::planFrom(const RobotPose& pose) {

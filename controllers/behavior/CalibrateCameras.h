@@ -107,7 +107,7 @@ class CalibrateCameras {
   std::size_t current_ = 0;     // index into views_ (the check view is views_.back() in Verify)
   RobotPose anchor_;            // the estimate on arrival: field headings become odometry turns
   int nextViewId_ = 1;
-  int walkId_ = 0;
+  int walkId_ = 1000000;  // its own walks' target ids, apart from goTo_'s (which count from 1)
   int solutionWanted_ = 0;
   int appliedBefore_ = 0;
   int round_ = 0;

@@ -9,6 +9,7 @@ bool GoToPose::run(const BehaviorInput& in, const Pose2& target, MotionRequest& 
     // Lost (or not yet localized): stand and let the head find the field.
     machine_.go(State::WaitForPose, in.time);
     haveTarget_ = false;
+    reachedSince_ = -1;
     request = MotionRequest{};
     return false;
   }
@@ -28,6 +29,16 @@ bool GoToPose::run(const BehaviorInput& in, const Pose2& target, MotionRequest& 
   }
   const bool arrived = distance < params_.arrivedDistance && std::abs(toTarget.theta) < params_.arrivedAngle &&
                        in.motion.walkToReached;
+  if (!in.motion.walkToReached || arrived) {
+    reachedSince_ = -1;
+  } else if (reachedSince_ < 0) {
+    reachedSince_ = in.time;
+  } else if (in.time - reachedSince_ >= params_.nudgeAfter) {
+    // The walk stands at its target, the estimate says not arrived: the target once more.
+    odometryTarget_ = odometryTarget;
+    ++targetId_;
+    reachedSince_ = -1;
+  }
   machine_.go(arrived ? State::Arrived : State::Walk, in.time);
   request = MotionRequest{};
   request.motion = MotionType::WalkTo;

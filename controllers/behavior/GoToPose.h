@@ -3,7 +3,10 @@
 // odometry frame (as the localization's estimate maps it: RobotPose::odometry), so the walk
 // closes the loop on odometry between images and the estimate corrects it; the target is sent
 // again only when the estimate moves it by more than the re-target distance (the estimate's
-// jitter must not keep the robot stepping). Until the pose is valid the robot stands.
+// jitter must not keep the robot stepping). The walk stops within its own tolerance of the
+// odometry target; when it stands there while the estimate still says "not arrived", the target
+// goes out again after nudgeAfter (a fresh id: the walk steps once more). Until the pose is
+// valid the robot stands.
 #include "controllers/behavior/BehaviorInput.h"
 #include "controllers/behavior/StateMachine.h"
 #include "representations/behavior/MotionRequest.h"
@@ -19,6 +22,7 @@ class GoToPose {
     double nearDistance = 0.5;        // m
     double arrivedDistance = 0.05;    // m: arrived by the estimate ...
     double arrivedAngle = 0.06;       // rad
+    double nudgeAfter = 1.0;          // s the walk has stood at its target while the estimate says not arrived: send it again
   };
   enum class State { WaitForPose, Walk, Arrived };
 
@@ -26,6 +30,13 @@ class GoToPose {
   explicit GoToPose(const Params& params) : params_(params) {}
   // Fills the motion request; returns true once arrived (by the estimate).
   bool run(const BehaviorInput& in, const Pose2& target, MotionRequest& request);
+  // A new walk: the next run sends its target afresh. The target ids keep counting (the motion
+  // engine takes a target when its id changes).
+  void restart() {
+    machine_.state = State::WaitForPose;
+    haveTarget_ = false;
+    reachedSince_ = -1;
+  }
   State state() const { return machine_.state; }
 
  private:
@@ -34,6 +45,7 @@ class GoToPose {
   bool haveTarget_ = false;
   Pose2 odometryTarget_;
   int targetId_ = 0;
+  double reachedSince_ = -1;  // s: since when the walk reports its target reached (-1: it does not)
 };
 
 template <class V>
@@ -44,6 +56,7 @@ void describe(V& v, GoToPose::Params& p) {
   v("nearDistance", p.nearDistance, 0.0, 10.0);
   v("arrivedDistance", p.arrivedDistance, 0.0, 1.0);
   v("arrivedAngle", p.arrivedAngle, 0.0, 1.0);
+  v("nudgeAfter", p.nudgeAfter, 0.1, 60.0);
 }
 
 }  // namespace nao::behavior

@@ -33,6 +33,22 @@ const char* calibrateStateName(behavior::CalibrateCameras::State s) {
   }
   return "?";
 }
+const char* tasksStateName(behavior::ChallengeTasks::State s) {
+  using S = behavior::ChallengeTasks::State;
+  switch (s) {
+    case S::Localize: return "localize";
+    case S::FindBall: return "find_ball";
+    case S::Search: return "search";
+    case S::Approach: return "approach";
+    case S::Observe: return "observe";
+    case S::Walk: return "walk";
+    case S::Verify: return "verify";
+    case S::Report: return "report";
+    case S::WaitForTap: return "wait_for_tap";
+    case S::Done: return "done";
+  }
+  return "?";
+}
 const char* lookStateName(behavior::LookActive::State s) {
   switch (s) {
     case behavior::LookActive::State::Sweep: return "sweep";
@@ -50,7 +66,8 @@ BehaviorControl::BehaviorControl(const ModuleContext& context)
       look_(std::make_unique<behavior::LookActive>(FieldModel::from(fieldFor(context)), params_.look)),
       report_(params_.report),
       calibrate_(std::make_unique<behavior::CalibrateCameras>(fieldFor(context), StandController::standPosture(),
-                                                              params_.calibrate)) {}
+                                                              params_.calibrate)),
+      tasks_(std::make_unique<behavior::ChallengeTasks>(fieldFor(context), params_.tasks)) {}
 
 void BehaviorControl::update() {
   const FrameHistory& history = in<FrameHistory>();
@@ -74,8 +91,10 @@ void BehaviorControl::update() {
     else if (params_.acknowledgeModes && challenge.mode == ChallengeMode::Mode::Evaluation)
       behavior::say(speech, "Evaluation mode");
     if (challenge.mode == ChallengeMode::Mode::Calibration) calibrate_->restart(input.time);
+    if (challenge.mode == ChallengeMode::Mode::Evaluation) tasks_->restart(input.time);
   }
   const bool calibrating = challenge.mode == ChallengeMode::Mode::Calibration;
+  const bool evaluating = challenge.mode == ChallengeMode::Mode::Evaluation;
   if (calibrating) {
     behavior::CalibrateCameras::Output c =
         calibrate_->run(input, in<Previous<CalibrationStatus>>(), in<CameraCalibration>(), in<CameraPercepts>());
@@ -84,14 +103,33 @@ void BehaviorControl::update() {
     if (c.lookActive) look_->run(input, head);
     else head = c.head;
     if (!c.report.empty()) report_.start(c.report, input.time);
+  } else if (evaluating) {
+    behavior::ChallengeTasks::Output c = tasks_->run(input, challenge, in<FieldBalls>());
+    motion = c.motion;
+    if (c.lookActive) look_->run(input, head);
+    else head = c.head;
+    if (!c.report.empty()) report_.start(c.report, input.time);
   } else {
     if (input.command.goTo) goTo_.run(input, *input.command.goTo, motion);
     else motion = MotionRequest{};  // stand
     look_->run(input, head);
   }
+  // Each option counts its own walk targets, and the motion engine takes a target when the id
+  // changes: a new (option, id) pair gets a new id here, so that one option's id never repeats
+  // another's last one.
+  const int walkSource = calibrating ? 1 : evaluating ? 2 : 0;
+  if (motion.motion == MotionType::WalkTo) {
+    if (walkSource != walkSource_ || motion.walkTargetId != walkOptionId_) {
+      walkSource_ = walkSource;
+      walkOptionId_ = motion.walkTargetId;
+      ++walkId_;
+    }
+    motion.walkTargetId = walkId_;
+  }
   report_.run(input, out<ArmMotionRequest>(), speech);
   if (report_.active()) motion = MotionRequest{};  // a report is made standing
   if (calibrating && report_.state() == behavior::Report::State::Done) calibrate_->reported(input.time);
+  if (evaluating && report_.state() == behavior::Report::State::Done) tasks_->reported(input.time);
   debug(kBehavior, [&] {
     return nlohmann::json{{"go_to", input.command.goTo ? goToStateName(goTo_.state()) : "none"},
                           {"look", lookStateName(look_->state())},
@@ -100,6 +138,8 @@ void BehaviorControl::update() {
                           {"head_point", {head.point.x(), head.point.y()}},
                           {"challenge", challengeModeName(challenge.mode)},
                           {"calibrate", calibrating ? calibrateStateName(calibrate_->state()) : "none"},
+                          {"tasks", evaluating ? tasksStateName(tasks_->state()) : "none"},
+                          {"task", evaluating ? tasks_->summary().task : -1},
                           {"calibration_request", calibrationActionName(calibration.action)},
                           {"speech", {{"id", speech.id}, {"text", speech.text}}}};
   });

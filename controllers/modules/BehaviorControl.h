@@ -5,10 +5,12 @@
 // the commanded field pose (BehaviorCommand::goTo) by the self-localization. When the referee
 // starts a challenge mode (ChallengeMode), the robot says so; in the calibration mode it
 // calibrates its cameras (CalibrateCameras, talking to the Calibrator through
-// CalibrationRequest and the status the Calibrator left in the last run).
+// CalibrationRequest and the status the Calibrator left in the last run); in the evaluation
+// mode it does the five tasks (ChallengeTasks: the balls of FieldBalls, the walks).
 #include <memory>
 
 #include "controllers/behavior/CalibrateCameras.h"
+#include "controllers/behavior/ChallengeTasks.h"
 #include "controllers/behavior/GoToPose.h"
 #include "controllers/behavior/LookActive.h"
 #include "controllers/behavior/Report.h"
@@ -22,6 +24,7 @@
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameState.h"
 #include "representations/modeling/BallModel.h"
+#include "representations/modeling/FieldBalls.h"
 #include "representations/modeling/RobotPose.h"
 #include "representations/motion/MotionInfo.h"
 #include "representations/perception/CalibrationStatus.h"
@@ -36,7 +39,8 @@ namespace nao::modules {
 class BehaviorControl
     : public Module<BehaviorControl,
                     Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory,
-                             ChallengeMode, CameraCalibration, CameraPercepts, Previous<CalibrationStatus>>,
+                             ChallengeMode, CameraCalibration, CameraPercepts, FieldBalls,
+                             Previous<CalibrationStatus>>,
                     Provides<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationRequest>,
                     Cadence::Cognition> {
  public:
@@ -45,6 +49,7 @@ class BehaviorControl
     behavior::LookActive::Params look;
     behavior::Report::Params report;
     behavior::CalibrateCameras::Params calibrate;
+    behavior::ChallengeTasks::Params tasks;
     bool acknowledgeModes = true;  // say "Calibration mode" / "Evaluation mode" when the referee starts one
   };
 
@@ -53,6 +58,7 @@ class BehaviorControl
   const behavior::LookActive& look() const { return *look_; }
   const behavior::Report& report() const { return report_; }
   const behavior::CalibrateCameras& calibrate() const { return *calibrate_; }
+  const behavior::ChallengeTasks& tasks() const { return *tasks_; }
 
  private:
   void update() override;
@@ -62,7 +68,9 @@ class BehaviorControl
   std::unique_ptr<behavior::LookActive> look_;
   behavior::Report report_;
   std::unique_ptr<behavior::CalibrateCameras> calibrate_;
+  std::unique_ptr<behavior::ChallengeTasks> tasks_;
   int modeId_ = 0;  // the last ChallengeMode start acknowledged
+  int walkSource_ = -1, walkOptionId_ = 0, walkId_ = 0;  // the walk target ids sent (see update)
 };
 
 }  // namespace nao::modules
@@ -74,6 +82,7 @@ void describe(V& v, modules::BehaviorControl::Params& p) {
   v("look", p.look);
   v("report", p.report);
   v("calibrate", p.calibrate);
+  v("tasks", p.tasks);
   v("acknowledgeModes", p.acknowledgeModes);
 }
 }  // namespace nao

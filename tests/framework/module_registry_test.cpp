@@ -66,8 +66,8 @@ TEST(ModuleRegistry, CommittedModulesJson) {
   EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "Calibrator",
                                      "CameraCalibrationProvider",
                                      "CameraMatrixProvider",
-                                     "CameraVision", "ChallengeModeProvider", "ExposureCameraMatrixProvider", "FallDetector", "FrameHistoryProvider",
-                                     "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "OwnBodyProvider",
+                                     "CameraVision", "ChallengeModeProvider", "ExposureCameraMatrixProvider", "FallDetector", "FieldBallLocator",
+                                     "FrameHistoryProvider", "GameStateProvider", "HeadControl", "LedControl", "MotionEngine", "OwnBodyProvider",
                                      "SelfLocalization", "TorsoMatrixProvider"}));
 }
 
@@ -119,7 +119,7 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
                    "ChallengeModeProvider",
                    "FallDetector", "HeadControl",
                    "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
-                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BehaviorControl",
+                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "FieldBallLocator", "BehaviorControl",
                    "Calibrator"}));
 }
 

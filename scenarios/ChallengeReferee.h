@@ -1,0 +1,51 @@
+#pragma once
+// The Autonomous Calibration Challenge's termination rules, judged from the simulator's truth
+// once per robot cycle (../shared/reference/calibration-challenge.md, "Termination"): three
+// falls; a fall without standing again within 60 s; leaving the field (every corner of both
+// soles beyond the outer edge of the boundary lines: standing on a line, as the goal-centre
+// tasks need, is in); touching a ball (the world latches every robot-ball touch in every
+// physics step). The phase's 10 min are the phase loop's to judge.
+#include <string>
+#include <vector>
+
+namespace nao::sim {
+
+class World;
+
+// A moment the referee noted: buttons, speech, arm, falls, contacts, the termination.
+struct ChallengeEvent {
+  double t = 0;  // s, simulated
+  std::string kind, text;
+};
+
+class ChallengeReferee {
+ public:
+  struct Params {
+    double fallTilt = 50;      // deg of torso tilt: fallen beyond this ...
+    double fallHeight = 0.15;  // m: ... or with the torso below this (standing: about 0.3)
+    double upTilt = 20;        // deg: standing again within this ...
+    double upHeight = 0.22;    // m: ... and above this
+    double getUpLimit = 60;    // s from a fall to standing again
+    int maxFalls = 3;
+  };
+
+  ChallengeReferee() = default;
+  explicit ChallengeReferee(const Params& params) : params_(params) {}
+  // Judges the world as it is now; calls go to `events`. Returns the termination reason, ""
+  // while the run goes on (and after a termination, the same reason again).
+  const std::string& check(World& world, int robot, std::vector<ChallengeEvent>& events);
+  // The referee placed the robot (standing): no fall is pending.
+  void placed() { fallenSince_ = -1; }
+  const std::string& terminated() const { return terminated_; }
+  int falls() const { return falls_; }
+  // Whether every sole corner lies beyond the outer edge of the boundary lines.
+  static bool leftField(const World& world, int robot);
+
+ private:
+  Params params_;
+  std::string terminated_;
+  int falls_ = 0;
+  double fallenSince_ = -1;
+};
+
+}  // namespace nao::sim

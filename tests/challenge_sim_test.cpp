@@ -1,0 +1,106 @@
+// The whole Autonomous Calibration Challenge in the simulator, as the README's main job runs
+// it (`calibration-challenge --seed 1`), scored against the simulator's truth: no termination,
+// every report within 0.05 m of the truth (the acceptance's bound), the phases within their
+// times, the six offsets within 0.15 deg, the robot walked (no jump), the pictures written;
+// then the same command again gives the same JSON (wall times aside). Bad options give one
+// line and exit 2.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "support/RunCommand.h"
+
+namespace nao {
+namespace {
+
+using test::CommandResult;
+using test::runCommand;
+
+nlohmann::json readJson(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// The JSON without what the machine's speed decides.
+nlohmann::json withoutWallTimes(nlohmann::json j) {
+  for (auto& [name, phase] : j["phases"].items()) phase.erase("wall_s");
+  j.erase("files");
+  return j;
+}
+
+TEST(CalibrationChallenge, SeedOneScoresWithinTheBoundsAndAgainTheSame) {
+  if (std::getenv("NAO_TEST_QUICK")) GTEST_SKIP() << "two whole challenges: the Release stage runs it";
+  const auto dir = std::filesystem::temp_directory_path() / "nao_challenge_sim_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const CommandResult r = runCommand("calibration-challenge --seed 1 --images " + (dir / "out").string() + " --json " +
+                                     (dir / "a.json").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json a = readJson(dir / "a.json");
+  EXPECT_TRUE(a["terminated"].is_null()) << a["terminated"];
+  EXPECT_EQ(a["falls"].get<int>(), 0);
+  ASSERT_EQ(a["tasks"].size(), 5u);
+  const char* names[5] = {"ball_own", "walk_own_goal", "walk_center", "ball_opponent", "walk_opponent_goal"};
+  for (int k = 0; k < 5; ++k) {
+    const nlohmann::json& t = a["tasks"][k];
+    EXPECT_EQ(t["task"], names[k]);
+    ASSERT_FALSE(t["error_m"].is_null()) << t.dump();
+    EXPECT_LE(t["error_m"].get<double>(), 0.05) << t.dump();
+    EXPECT_EQ(t["error_rounded_m"].get<double>(), 0.0) << t.dump();
+    EXPECT_GT(t["sim_s"].get<double>(), 1.0) << "a task takes time: " << t.dump();
+  }
+  // The ball reports name the taped balls, not the phase 1 ones.
+  EXPECT_LT(a["tasks"][0]["truth"][0].get<double>(), 0);
+  EXPECT_GT(a["tasks"][3]["truth"][0].get<double>(), 0);
+  EXPECT_EQ(a["tasks"][0]["truth"], a["balls"]["phase2"][0]);
+  const double calibration = a["phases"]["calibration"]["sim_s"], evaluation = a["phases"]["evaluation"]["sim_s"];
+  EXPECT_LE(calibration, 120);
+  EXPECT_LE(evaluation, 180);
+  EXPECT_EQ(a["categories"]["calibration_time_s"].get<double>(), std::round(calibration / 5) * 5);
+  for (int k = 0; k < 6; ++k) EXPECT_LE(std::abs(a["offsets"]["error_deg"][k].get<double>()), 0.15) << k;
+  EXPECT_TRUE(a["offsets"]["applied"].get<bool>());
+  EXPECT_GT(a["path_m"].get<double>(), 10.0) << "three spots, two balls: metres of walking";
+  // The event log: the referee's buttons and taps, the robot's speech, in order of time.
+  int taps = 0, speech = 0;
+  double last = -1;
+  for (const auto& e : a["events"]) {
+    EXPECT_GE(e["t"].get<double>(), last);
+    last = e["t"].get<double>();
+    taps += e["kind"] == "tap";
+    speech += e["kind"] == "speech";
+  }
+  EXPECT_EQ(taps, 4);
+  EXPECT_GE(speech, 8);  // two mode acknowledgements, "Calibration finished", five reports
+  // The pictures: the field from above and the views at each report.
+  for (const char* file : {"field.png", "calibration_after.png", "report_1_ball_own_top.png", "report_4_ball_opponent_bottom.png"})
+    EXPECT_FALSE(cv::imread((dir / "out" / file).string()).empty()) << file;
+
+  // Same seed, same challenge.
+  ASSERT_EQ(runCommand("calibration-challenge --seed 1 --json " + (dir / "b.json").string()).code, 0);
+  EXPECT_EQ(withoutWallTimes(readJson(dir / "b.json")), withoutWallTimes(a));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CalibrationChallenge, BadOptionsGiveOneLineAndNothingWritten) {
+  const auto dir = std::filesystem::temp_directory_path() / "nao_challenge_bad_options";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string json = " --json " + (dir / "x.json").string() + " --images " + (dir / "img").string();
+  for (const std::string args : {"calibration-challenge --start middle", "calibration-challenge --miscalibration 1,2,x,4,5,6",
+                                 "calibration-challenge --miscalibration 1,2,3", "calibration-challenge --lighting nowhere"}) {
+    const CommandResult r = runCommand(args + json);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << ": " << r.out;
+    EXPECT_TRUE(std::filesystem::is_empty(dir)) << args << " left a file";
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace nao

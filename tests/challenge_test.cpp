@@ -1,0 +1,270 @@
+// The calibration challenge's phase 2 parts, each against an independent truth: the per-half
+// ball estimate (FieldBallLocator) with a false ball and far observations among the near ones;
+// the detour round a known ball (ChallengeTasks) and the report's sentence; the referee's
+// ball draw and its checks; and the termination rules judged from the simulator's truth
+// (ChallengeReferee): a ball rolled into the feet, a robot beyond the side line, falls, a
+// robot that does not get up.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "controllers/StandController.h"
+#include "controllers/behavior/ChallengeTasks.h"
+#include "controllers/modules/FieldBallLocator.h"
+#include "perception/calibration/CalibrationViews.h"
+#include "robot/Error.h"
+#include "robot/Paths.h"
+#include "scenarios/CalibrationChallenge.h"
+#include "scenarios/ChallengeReferee.h"
+#include "sim/World.h"
+#include "tests/support/ModuleHarness.h"
+
+namespace nao {
+namespace {
+
+using modules::FieldBallLocator;
+using testing::ModuleHarness;
+
+FieldDimensions standardField() { return FieldDimensions::load(dataPath("config/field_dimensions.json")); }
+
+TEST(FieldBallLocator, TheDensestClusterAndItsNearObservations) {
+  const FieldBallLocator::Params p;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> far(0, 0.06), near(0, 0.004);
+  std::deque<FieldBallLocator::Observation> obs;
+  double t = 0;
+  // From afar: the ball at (-2, 1), noisy; a false ball at (-1, -2) a few times.
+  for (int i = 0; i < 40; ++i) obs.push_back({Eigen::Vector2d(-2 + far(rng), 1 + far(rng)), 3.0, t += 0.03});
+  for (int i = 0; i < 8; ++i) obs.push_back({Eigen::Vector2d(-1, -2), 2.0, t += 0.03});
+  // From near: where the ball truly is, a centimetre from the far estimate's centre.
+  for (int i = 0; i < 40; ++i) obs.push_back({Eigen::Vector2d(-2.01 + near(rng), 1.0 + near(rng)), 0.9, t += 0.03});
+  const FieldBalls::Ball b = FieldBallLocator::estimate(obs, p);
+  ASSERT_TRUE(b.seen);
+  EXPECT_LT((b.position - Eigen::Vector2d(-2, 1)).norm(), 0.03);
+  EXPECT_EQ(b.close, 40);
+  EXPECT_LT((b.closePosition - Eigen::Vector2d(-2.01, 1.0)).norm(), 0.003);
+  EXPECT_LT(b.closeSpread, 0.01);
+  EXPECT_NEAR(b.lastSeen, t, 1e-12);
+  // Too few observations are no ball.
+  obs.resize(3);
+  EXPECT_FALSE(FieldBallLocator::estimate(obs, p).seen);
+}
+
+TEST(FieldBallLocator, PerceptsBecomeFieldBallsPerHalfUntilANewStart) {
+  ModuleHarness h = ModuleHarness::make<FieldBallLocator>();
+  RobotPose pose;
+  pose.valid = true;
+  pose.covariance = Eigen::Matrix3d::Identity() * 1e-4;
+  pose.pose = Pose2(-2, 0, M_PI / 2);  // facing +y
+  CameraPercepts percepts;
+  percepts.processed = true;
+  percepts.ball.seen = true;
+  percepts.ball.position = Eigen::Vector2d(1, 0);  // 1 m ahead: field (-2, 1)
+  ChallengeMode mode;
+  mode.modeId = 1;
+  for (int i = 0; i < 10; ++i) {
+    percepts.timestamp = 0.033 * i;
+    h.fix(pose).fix(percepts).fix(mode).run();
+  }
+  FieldBalls balls = h.get<FieldBalls>();
+  ASSERT_TRUE(balls.own.seen);
+  EXPECT_FALSE(balls.opponent.seen);
+  EXPECT_LT((balls.own.position - Eigen::Vector2d(-2, 1)).norm(), 1e-9);
+  EXPECT_LT((balls.own.closePosition - Eigen::Vector2d(-2, 1)).norm(), 1e-9);
+  // An uncertain pose adds nothing; a ball in the other half goes there.
+  pose.pose = Pose2(1, 0, 0);
+  pose.covariance = Eigen::Matrix3d::Identity();
+  percepts.timestamp += 0.033;
+  h.fix(pose).fix(percepts).fix(mode).run();
+  EXPECT_EQ(h.get<FieldBalls>().own.support, 10);
+  EXPECT_EQ(h.get<FieldBalls>().opponent.support, 0);
+  pose.covariance = Eigen::Matrix3d::Identity() * 1e-4;
+  for (int i = 0; i < 5; ++i) {
+    percepts.timestamp += 0.033;
+    h.fix(pose).fix(percepts).fix(mode).run();
+  }
+  EXPECT_TRUE(h.get<FieldBalls>().opponent.seen);
+  EXPECT_LT((h.get<FieldBalls>().opponent.position - Eigen::Vector2d(2, 0)).norm(), 1e-9);
+  // The referee starts again: both halves are empty.
+  mode.modeId = 2;
+  percepts.ball.seen = false;
+  h.fix(pose).fix(percepts).fix(mode).run();
+  EXPECT_FALSE(h.get<FieldBalls>().own.seen);
+  EXPECT_FALSE(h.get<FieldBalls>().opponent.seen);
+}
+
+double segmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+TEST(ChallengeTasks, WalksGoRoundKnownBallsInsideTheField) {
+  const FieldDimensions field = standardField();
+  const behavior::ChallengeTasks::Params p;
+  FieldBalls balls;
+  const Eigen::Vector2d from(-4, 0), to(0, 0);
+  EXPECT_EQ(behavior::ChallengeTasks::detour(from, to, balls, field, p), to);  // no ball known
+  balls.own.seen = true;
+  balls.own.position = Eigen::Vector2d(-2, 0.1);
+  const Eigen::Vector2d w = behavior::ChallengeTasks::detour(from, to, balls, field, p);
+  EXPECT_NEAR((w - balls.own.position).norm(), p.detourClearance, 1e-9);
+  EXPECT_LT(w.y(), 0) << "round the side the straight way passes";
+  EXPECT_GE(segmentDistance(balls.own.position, from, w), p.ballClearance);
+  EXPECT_GE(segmentDistance(balls.own.position, w, to), p.ballClearance);
+  // Gone round once on this walk, the ball does not make another detour from beside it.
+  const std::vector<Eigen::Vector2d> passed{balls.own.position};
+  EXPECT_EQ(behavior::ChallengeTasks::detour(w, Eigen::Vector2d(-1.5, 0), balls, field, p, passed), Eigen::Vector2d(-1.5, 0));
+  // A ball passed at a distance needs no detour; one beside the side line is passed inside.
+  balls.own.position = Eigen::Vector2d(-2, 0.6);
+  EXPECT_EQ(behavior::ChallengeTasks::detour(from, to, balls, field, p), to);
+  balls.own.position = Eigen::Vector2d(-2, 2.45);
+  const Eigen::Vector2d in = behavior::ChallengeTasks::detour(Eigen::Vector2d(-4, 2.5), Eigen::Vector2d(0, 2.5), balls, field, p);
+  EXPECT_LT(in.y(), 2.45);
+  EXPECT_LE(std::abs(in.y()), field.width / 2 - p.fieldMargin);
+  // The nearer of two balls on the way comes first.
+  balls.opponent.seen = true;
+  balls.opponent.position = Eigen::Vector2d(2, 0);
+  balls.own.position = Eigen::Vector2d(-2, 0);
+  EXPECT_LT(behavior::ChallengeTasks::detour(Eigen::Vector2d(-4, 0), Eigen::Vector2d(4, 0), balls, field, p).x(), 0);
+}
+
+TEST(ChallengeTasks, TheBallSentenceInMillimetres) {
+  EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(1.2345, -0.0004)), "The ball is at: 1235 0");
+  EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(-0.12, 2.7)), "The ball is at: -120 2700");
+  const behavior::ChallengeTasks tasks(standardField(), {});
+  using T = behavior::ChallengeTasks::Task;
+  EXPECT_EQ(tasks.spot(T::WalkOwnGoal).x, -4.5);
+  EXPECT_EQ(tasks.spot(T::WalkCenter).x, 0);
+  EXPECT_EQ(tasks.spot(T::WalkOpponentGoal).x, 4.5);
+}
+
+TEST(ChallengeBalls, DrawnClearOfLinesSpotsAndTheStart) {
+  const FieldDimensions field = standardField();
+  const FieldModel model = FieldModel::from(field);
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const int side = seed % 2 ? 1 : -1;
+    const auto balls = sim::phaseTwoBalls(field, seed, side);
+    ASSERT_NO_THROW(sim::checkBalls(field, balls, "draw"));
+    EXPECT_LT(balls[0].x(), -0.3 + 1e-9);
+    EXPECT_GT(balls[1].x(), 0.3 - 1e-9);
+    const Eigen::Vector2d start = calibration::initialPosition(field, side).head<2>();
+    for (const Eigen::Vector2d& b : balls) {
+      EXPECT_LE(std::abs(b.x()), field.length / 2 - 0.3 + 1e-9);
+      EXPECT_LE(std::abs(b.y()), field.width / 2 - 0.3 + 1e-9);
+      EXPECT_GE((b - start).norm(), 0.6);
+      for (const Eigen::Vector2d& s : {Eigen::Vector2d(-4.5, 0), Eigen::Vector2d(0, 0), Eigen::Vector2d(4.5, 0)})
+        EXPECT_GE((b - s).norm(), 0.6);
+      for (const FieldLine& l : model.lines) EXPECT_GE(segmentDistance(b, l.from, l.to), 0.15) << l.name;
+      EXPECT_GE(std::abs(b.norm() - model.centerCircleRadius), 0.15);
+    }
+    EXPECT_EQ(sim::phaseTwoBalls(field, seed, side), balls) << "the same seed, the same balls";
+  }
+  EXPECT_NE(sim::phaseTwoBalls(field, 1, 1), sim::phaseTwoBalls(field, 2, 1));
+}
+
+TEST(ChallengeBalls, BallsOffTheFieldOrOnALineAreRefused) {
+  const FieldDimensions field = standardField();
+  auto error = [&](const std::array<Eigen::Vector2d, 2>& balls) {
+    try {
+      sim::checkBalls(field, balls, "venue.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error({Eigen::Vector2d(-2, 1), Eigen::Vector2d(2, -1)}), "");
+  EXPECT_EQ(error({Eigen::Vector2d(-2, 3.2), Eigen::Vector2d(2, -1)}), "venue.json: the own half's ball lies outside the field");
+  EXPECT_EQ(error({Eigen::Vector2d(-2, 1), Eigen::Vector2d(4.5, 1)}), "venue.json: the opponent half's ball lies on a line");
+  EXPECT_EQ(error({Eigen::Vector2d(2, 1), Eigen::Vector2d(2, -1)}), "venue.json: the own half's ball lies in the other half");
+  EXPECT_EQ(error({Eigen::Vector2d(-2, NAN), Eigen::Vector2d(2, -1)}), "venue.json: the own half's ball lies outside the field");
+}
+
+TEST(ChallengeScoring, TheRefereesRounding) {
+  EXPECT_DOUBLE_EQ(sim::roundTo(0.049, 0.1), 0.0);
+  EXPECT_DOUBLE_EQ(sim::roundTo(0.051, 0.1), 0.1);
+  EXPECT_DOUBLE_EQ(sim::roundTo(62.4, 5), 60);
+  EXPECT_DOUBLE_EQ(sim::roundTo(62.6, 5), 65);
+}
+
+// A world with the robot standing at `pose` and two balls far away (truth only: no program).
+struct RefereeWorld {
+  sim::World world;
+  sim::ChallengeReferee referee;
+  std::vector<sim::ChallengeEvent> events;
+  explicit RefereeWorld(const Eigen::Vector3d& pose) : world(spec(pose), 1) {
+    world.placeRobot(0, pose, StandController::standPosture());
+  }
+  static sim::SceneSpec spec(const Eigen::Vector3d& pose) {
+    sim::SceneSpec s;
+    s.field = standardField();
+    s.robots = {pose};
+    s.balls = {Eigen::Vector3d(-2, 2, 0.05), Eigen::Vector3d(2, -2, 0.05)};
+    return s;
+  }
+  std::string run(double seconds) {
+    const double end = world.time() + seconds;
+    while (world.time() < end && referee.terminated().empty()) {
+      world.stepCycle();
+      referee.check(world, 0, events);
+    }
+    return referee.terminated();
+  }
+  int count(const std::string& kind) const {
+    return static_cast<int>(std::count_if(events.begin(), events.end(), [&](const auto& e) { return e.kind == kind; }));
+  }
+};
+
+TEST(ChallengeReferee, ABallRolledIntoTheFeetIsTouched) {
+  RefereeWorld r(Eigen::Vector3d(0, 1, 0));
+  EXPECT_EQ(r.run(1.0), "") << "standing with the balls far away";
+  // A ball at rest 0.3 m ahead is not touched ...
+  r.world.placeBall(0, Eigen::Vector3d(0.3, 1, 0.05));
+  EXPECT_EQ(r.run(1.0), "");
+  // ... one rolled into the feet from the side is, within the step it arrives.
+  r.world.placeBall(1, Eigen::Vector3d(0.03, 1.6, 0.05), Eigen::Vector3d(0, -1.5, 0));
+  EXPECT_EQ(r.run(2.0), "touched_ball");
+  ASSERT_EQ(r.count("ball_contact"), 1);
+  EXPECT_EQ(r.count("termination"), 1);
+  EXPECT_NE(r.events.front().text.find("ball 1"), std::string::npos) << r.events.front().text;
+}
+
+TEST(ChallengeReferee, LeavingTheFieldIsBothSolesBeyondTheLine) {
+  const FieldDimensions f = standardField();
+  for (const auto& [pose, out] : std::vector<std::pair<Eigen::Vector3d, bool>>{
+           {Eigen::Vector3d(0, f.width / 2, 0), false},            // on the side line
+           {Eigen::Vector3d(-f.length / 2, 0, 0), false},          // on the goal line (the own goal's centre)
+           {Eigen::Vector3d(0, f.width / 2 + 0.12, 0), false},     // a sole's edge still on the line
+           {Eigen::Vector3d(0, f.width / 2 + 0.3, 0), true},
+           {Eigen::Vector3d(f.length / 2 + 0.3, 1, M_PI / 2), true}}) {
+    RefereeWorld r(pose);
+    EXPECT_EQ(sim::ChallengeReferee::leftField(r.world, 0), out) << pose.transpose();
+    EXPECT_EQ(r.run(0.1), out ? "left_field" : "") << pose.transpose();
+  }
+}
+
+TEST(ChallengeReferee, ThreeFallsAndAFallWithoutGettingUp) {
+  RefereeWorld r(Eigen::Vector3d(0, 0, 0));
+  for (int fall = 1; fall <= 3; ++fall) {
+    r.world.pushRobot(0, Eigen::Vector3d(12, 0, 0));
+    r.run(3.0);
+    EXPECT_EQ(r.referee.falls(), fall);
+    if (fall < 3) {
+      EXPECT_EQ(r.referee.terminated(), "");
+      r.world.placeRobot(0, Eigen::Vector3d(0, 0, 0), StandController::standPosture());
+      r.referee.placed();
+      r.run(1.0);
+    }
+  }
+  EXPECT_EQ(r.referee.terminated(), "three_falls");
+  // No robot program: the pushed robot lies there.
+  RefereeWorld lying(Eigen::Vector3d(0, 0, 0));
+  lying.world.pushRobot(0, Eigen::Vector3d(12, 0, 0));
+  EXPECT_EQ(lying.run(59.0), "");
+  EXPECT_EQ(lying.referee.falls(), 1);
+  EXPECT_EQ(lying.run(3.0), "not_up_within_60s");
+}
+
+}  // namespace
+}  // namespace nao
