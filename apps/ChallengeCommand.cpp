@@ -2,6 +2,7 @@
 // (scenarios/CalibrationChallenge.h), the robot program playing both phases, scored as the
 // referee scores.
 #include <cmath>
+#include <vector>
 #include <cstdio>
 #include <random>
 
@@ -11,10 +12,13 @@
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"
+#include "apps/Rows.h"
 #include "apps/SimOptions.h"
 #include "robot/Error.h"
+#include "robot/Paths.h"
 #include "robot/OutputFiles.h"
 #include "scenarios/CalibrationChallenge.h"
+#include "scenarios/ChallengeEval.h"
 #include "sim/FieldView.h"
 #include "sim/ImageIO.h"
 
@@ -63,17 +67,22 @@ int challengeCommand(const ChallengeCommandOptions& options) {
   checkRobotModel(run.robotModel, run.field);
   run.lighting = lightingFrom(options.sim.lighting);
   run.seed = options.common.seed;
-  run.miscalibration = miscalibrationFrom(options.sim, run.seed);
-  if (options.start == "seed") {
-    std::mt19937_64 rng(run.seed * 0x2545f4914f6cdd1dULL + 5);
-    run.side = rng() % 2 ? 1 : -1;
-  } else {
-    run.side = options.start == "left" ? 1 : -1;
-  }
+  // What the options leave open, the seed decides, as for a trial of eval challenge with this seed.
+  const sim::ChallengeDraw draw = sim::challengeDraw(run.seed, options.maxOffset);
+  run.miscalibration = options.sim.miscalibration == "random" ? draw.offsets : miscalibrationFrom(options.sim, run.seed);
+  run.side = options.start == "seed" ? draw.side : options.start == "left" ? 1 : -1;
   run.randomize = options.randomize;
   run.timeLimit = options.timeLimit;
   run.imagesDir = options.images;
   o.skipCalibration = options.skipCalibration;
+  if (options.venue != "none") {
+    const std::vector<sim::Venue> venues = sim::loadVenues(dataPath("config/venues.json"), run.field);
+    const sim::Venue& venue =
+        options.venue == "random" ? venues[run.seed % venues.size()] : sim::venueNamed(venues, options.venue);
+    o.venue = venue.name;
+    o.phaseTwoBalls = venue.balls;
+    run.floorFriction = venue.floorFriction;
+  }
   DebugSink debug(options.debug);
   run.debug = debug.channels();
   const std::size_t limit = static_cast<std::size_t>(run.timeLimit);
@@ -103,6 +112,45 @@ int challengeCommand(const ChallengeCommandOptions& options) {
   j["files"] = files;
   if (!options.common.json.empty()) writeJson(options.common.json, j);
   return r.terminated.empty() && r.tasks.size() == 5 ? 0 : 1;
+}
+
+// eval challenge: --trials N seeded challenges, one row each (--rows FILE: resumable).
+int evalChallengeCommand(const EvalChallengeOptions& options) {
+  sim::ChallengeEvalOptions o;
+  o.field = calibrationFieldFrom(options.common);
+  o.robotModel = options.model;
+  checkRobotModel(o.robotModel, o.field);
+  o.trials = options.trials;
+  o.seed = options.common.seed;
+  o.lightings = lightingsFrom(options.lighting);
+  o.randomize = options.randomize;
+  o.skipCalibration = options.skipCalibration;
+  o.maxOffsetDeg = options.maxOffset;
+  o.timeLimit = options.timeLimit;
+  if (options.venue == "random") o.venues = sim::loadVenues(dataPath("config/venues.json"), o.field);
+  else if (options.venue != "none")
+    o.venues = {sim::venueNamed(sim::loadVenues(dataPath("config/venues.json"), o.field), options.venue)};
+  o.progress = [](const nlohmann::json& row, int done, int total) {
+    std::string errors;
+    for (const auto& t : row["tasks"]) {
+      char e[32];
+      std::snprintf(e, sizeof e, " %.3f", t["error_m"].is_null() ? NAN : t["error_m"].get<double>());
+      errors += e;
+    }
+    std::fprintf(stderr, "eval challenge: trial %d/%d seed %llu (%s): %s; errors (m)%s; %.0f s wall\n", done, total,
+                 row.at("seed").get<unsigned long long>(), row.at("lighting").get<std::string>().c_str(),
+                 row["failure"].is_null() ? "ok" : row["failure"].get<std::string>().c_str(), errors.c_str(),
+                 row.at("wall_s").get<double>());
+  };
+  std::vector<nlohmann::json> rows;
+  if (!options.rows.empty()) rows = readRows(options.rows, "eval challenge");
+  RowWriter writeRow(options.rows);
+  nlohmann::json j = sim::evalChallenge(o, rows, [&](const nlohmann::json& row) { writeRow(row); });
+  j["seed"] = o.seed;
+  std::fprintf(stderr, "eval challenge: %d trials, %zu failed, terminations %s; every report within 0.05 m in %.0f %% of the trials\n",
+               o.trials, j["failures"].size(), j["terminations"].dump().c_str(), 100 * j["within_0_05_m"].get<double>());
+  if (!options.common.json.empty()) writeJson(options.common.json, j);
+  return 0;
 }
 
 }  // namespace nao::cli

@@ -2,12 +2,10 @@
 // simulator's truth (scenarios/LocalizationEval.h), with --rows for evaluations that span
 // sessions: one JSON line per trial, appended and flushed as the trial ends.
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"
+#include "apps/Rows.h"
 #include "apps/SimOptions.h"
 #include "robot/Error.h"
 #include "scenarios/LocalizationEval.h"
@@ -15,45 +13,6 @@
 namespace nao::cli {
 
 namespace {
-
-// The rows already in `path`. A last line that is cut short (no newline, or not JSON) is a
-// trial interrupted while its row was written: it is reported, removed from the file and run
-// again. Any other line that is not a row is bad input.
-std::vector<nlohmann::json> readRows(const std::string& path) {
-  std::vector<nlohmann::json> rows;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return rows;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("--rows", path + ": cannot be read");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  std::size_t pos = 0, line = 0;
-  while (pos < text.size()) {
-    const std::size_t end = text.find('\n', pos);
-    ++line;
-    const std::string s = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
-    const bool last = end == std::string::npos || end + 1 >= text.size();
-    auto j = nlohmann::json::parse(s, nullptr, false);
-    const bool ok = !j.is_discarded() && j.is_object() && j.contains("seed") && j.contains("settings");
-    if (end == std::string::npos || (!ok && last)) {
-      if (ok && end == std::string::npos) {  // a complete row without its newline: keep it, end the line
-        std::ofstream(path, std::ios::app) << '\n';
-        rows.push_back(std::move(j));
-        break;
-      }
-      std::fprintf(stderr, "eval localization: %s: line %zu is truncated (%zu bytes); its trial runs again\n", path.c_str(),
-                   line, s.size());
-      std::filesystem::resize_file(path, pos, ec);
-      if (ec) throw Error("--rows", path + ": cannot be truncated (" + ec.message() + ")");
-      break;
-    }
-    if (!ok) throw Error("--rows", path + ": line " + std::to_string(line) + " is not a row of eval localization");
-    rows.push_back(std::move(j));
-    pos = end + 1;
-  }
-  return rows;
-}
 
 std::string fixed(const nlohmann::json& v, const char* format, double scale = 1) {
   if (v.is_null()) return "-";
@@ -92,9 +51,8 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
   DebugSink debug(options.debug);
   o.debug = debug.channels();
   std::vector<nlohmann::json> rows;
-  std::ofstream rowFile;
   if (!options.rows.empty()) {
-    rows = readRows(options.rows);
+    rows = readRows(options.rows, "eval localization");
     std::size_t others = 0;
     for (const auto& r : rows) {
       const auto s = r.at("seed").get<std::uint64_t>();
@@ -103,15 +61,9 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
     if (others > 0)
       std::fprintf(stderr, "eval localization: %s holds %zu rows of seeds outside this run's; they are not counted\n",
                    options.rows.c_str(), others);
-    rowFile.open(options.rows, std::ios::app | std::ios::binary);
-    if (!rowFile) throw RunFailure(options.rows, "cannot be opened for appending");
   }
-  const nlohmann::json aggregate = sim::evalLocalization(o, rows, [&](const nlohmann::json& row) {
-    if (!rowFile.is_open()) return;
-    rowFile << row.dump() << '\n';
-    rowFile.flush();
-    if (!rowFile) throw RunFailure(options.rows, "cannot be written");
-  });
+  RowWriter writeRow(options.rows);
+  const nlohmann::json aggregate = sim::evalLocalization(o, rows, [&](const nlohmann::json& row) { writeRow(row); });
   nlohmann::json j = aggregate;
   j["seed"] = o.seed;
   nlohmann::json names = nlohmann::json::array();

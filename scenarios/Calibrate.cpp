@@ -172,6 +172,7 @@ ChallengeSetup challengeSetup(const CalibrationRunOptions& o) {
   setup.side = o.side;
   setup.seed = o.seed;
   setup.randomize = o.randomize;
+  setup.floorFriction = o.floorFriction;
   setup.calibrator = o.calibrator;
   setup.debug = o.debug;
   return setup;

@@ -45,6 +45,7 @@ struct CalibrationRunOptions {
   double shieldSeconds = 2;               // the camera shield before the start (dark frames)
   double timeLimit = 600;                 // s of the phase (the rules' 10 min)
   bool randomize = false;                 // a foreign robot (ChallengeSetup::randomize)
+  std::optional<double> floorFriction;    // the venue's carpet
   std::optional<std::array<Eigen::Vector2d, 2>> balls;  // phase 1's balls (else near the halves' centres, from seed)
   std::function<void(double simTime)> progress;  // about once per simulated second
   DebugChannels* debug = nullptr;         // the robot program's debug channels (not owned); null: none

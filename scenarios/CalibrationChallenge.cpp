@@ -45,6 +45,17 @@ nlohmann::json vec(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
 nlohmann::json optionalNumber(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); }
 }  // namespace
 
+ChallengeDraw challengeDraw(std::uint64_t seed, double maxOffsetDeg) {
+  std::mt19937_64 rng(seed * 0xd1b54a32d192ed03ULL + 7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::array<double, 6> offsets{};
+  for (double& v : offsets) v = u(rng) * maxOffsetDeg * kDeg;
+  ChallengeDraw d;
+  d.offsets = CameraCalibration::fromArray(offsets);
+  d.side = rng() % 2 ? 1 : -1;
+  return d;
+}
+
 double roundTo(double value, double step) { return std::round(value / step) * step; }
 
 void checkBalls(const FieldDimensions& field, const std::array<Eigen::Vector2d, 2>& balls, const std::string& source) {
@@ -196,6 +207,7 @@ nlohmann::json challengeJson(const ChallengeOptions& o, const ChallengeResult& r
   j["seed"] = o.run.seed;
   j["start"] = o.run.side > 0 ? "left" : "right";
   j["lighting"] = o.run.lighting.name;
+  j["venue"] = o.venue.empty() ? nlohmann::json() : nlohmann::json(o.venue);
   j["head_id"] = r.headId;
   j["robot"] = r.robot;
   j["terminated"] = r.terminated.empty() ? nlohmann::json() : nlohmann::json(r.terminated);

@@ -23,6 +23,7 @@ struct ChallengeOptions {
   CalibrationRunOptions run;         // the robot, venue, offsets, lighting, start, seed, images, debug
   bool skipCalibration = false;      // phase 2 with the factory calibration (no phase 1)
   std::optional<std::array<Eigen::Vector2d, 2>> phaseTwoBalls;  // else drawn from the seed
+  std::string venue;                 // the venue's name for the JSON ("" none: balls from the seed)
   double tapPause = 2.0;             // s from a report to the referee's tap (the clock is paused)
   std::function<void(int phase, double simTime)> progress;  // about once per simulated second of a phase
   double placePause = 2.5;           // s from phase 1's report to the placement for phase 2 (the report's arm comes down)
@@ -55,6 +56,15 @@ struct ChallengeResult {
 };
 
 ChallengeResult runChallenge(const ChallengeOptions& options);
+
+// What a seed decides when the options leave it open: the injected offsets (uniform in
+// +-maxOffsetDeg per parameter) and the start side. calibration-challenge and eval challenge
+// draw the same, so that a trial's seed replays it.
+struct ChallengeDraw {
+  CameraCalibration offsets;
+  int side = -1;
+};
+ChallengeDraw challengeDraw(std::uint64_t seed, double maxOffsetDeg = 3);
 
 // Phase 2's balls from the seed: one per half inside the field, at least clearance from every
 // line, mark and the other ball, and 0.6 m from the start and the three spots.

@@ -40,6 +40,10 @@ ChallengeSession::ChallengeSession(const ChallengeSetup& setup) : setup_(setup),
     robot_["floor_friction"] = v.friction;
     robot_["max_joint_offset_deg"] = maxOffset * 180 / M_PI;
   }
+  if (setup.floorFriction) {
+    world_->setFloorFriction(*setup.floorFriction);
+    robot_["floor_friction"] = *setup.floorFriction;
+  }
   world_->placeRobot(0, start, StandController::standPosture());
   backend_ = std::make_unique<SimBackend>(*world_, 0, true);
   headId_ = backend_->robotInfo().headId;

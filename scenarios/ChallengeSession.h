@@ -40,6 +40,7 @@ struct ChallengeSetup {
   int side = -1;                           // the start: right (-1, y < 0) or left (+1) side line
   std::uint64_t seed = 1;
   bool randomize = false;                  // a foreign robot: masses, joint offsets (head aside), floor friction
+  std::optional<double> floorFriction;     // the venue's carpet (after randomize's)
   std::optional<modules::Calibrator::Params> calibrator;  // the robot's Calibrator parameters (else its file)
   DebugChannels* debug = nullptr;          // the robot program's debug channels (not owned)
 };

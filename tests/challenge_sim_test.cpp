@@ -9,6 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -87,13 +90,57 @@ TEST(CalibrationChallenge, SeedOneScoresWithinTheBoundsAndAgainTheSame) {
   std::filesystem::remove_all(dir);
 }
 
+// eval challenge writes a row per trial as it ends; a row cut short (a trial interrupted while
+// its row was written) runs again, and the aggregate comes out the same as uninterrupted. Rows
+// of other settings are refused. (Short phases: each trial ends at the 2 s phase limit.)
+TEST(EvalChallenge, ResumesFromATruncatedRowsFileToTheSameAggregate) {
+  const auto dir = std::filesystem::temp_directory_path() / "nao_eval_challenge_rows";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string rows = (dir / "rows.jsonl").string();
+  const std::string common = "eval challenge --trials 2 --time-limit 2 --lighting default --rows " + rows;
+  ASSERT_EQ(runCommand(common + " --json " + (dir / "a.json").string()).code, 0);
+  std::string text;
+  {
+    std::ifstream in(rows);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  ASSERT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
+  const nlohmann::json a = readJson(dir / "a.json");
+  EXPECT_EQ(a["trials"], 2);
+  EXPECT_EQ(a["terminations"]["phase_time"], 2);
+  ASSERT_EQ(a["failures"].size(), 2u);
+  EXPECT_EQ(a["failures"][0]["seed"], 1);
+  // The second row cut in the middle: its trial runs again, the first does not.
+  const std::size_t cut = text.find('\n') + 1 + 40;
+  std::ofstream(rows, std::ios::trunc) << text.substr(0, cut);
+  const CommandResult again = runCommand(common + " --json " + (dir / "b.json").string());
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("line 2 is truncated"), std::string::npos) << again.out;
+  EXPECT_EQ(readJson(dir / "b.json"), a);
+  std::string resumed;
+  {
+    std::ifstream in(rows);
+    resumed.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  EXPECT_EQ(std::count(resumed.begin(), resumed.end(), '\n'), 2);
+  EXPECT_EQ(resumed.substr(0, text.find('\n')), text.substr(0, text.find('\n'))) << "the first trial did not run again";
+  // Other settings: refused, nothing run.
+  const CommandResult other = runCommand("eval challenge --trials 2 --time-limit 3 --lighting default --rows " + rows);
+  EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_EQ(std::count(other.out.begin(), other.out.end(), '\n'), 1) << other.out;
+  EXPECT_NE(other.out.find("rows of other settings"), std::string::npos) << other.out;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CalibrationChallenge, BadOptionsGiveOneLineAndNothingWritten) {
   const auto dir = std::filesystem::temp_directory_path() / "nao_challenge_bad_options";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string json = " --json " + (dir / "x.json").string() + " --images " + (dir / "img").string();
   for (const std::string args : {"calibration-challenge --start middle", "calibration-challenge --miscalibration 1,2,x,4,5,6",
-                                 "calibration-challenge --miscalibration 1,2,3", "calibration-challenge --lighting nowhere"}) {
+                                 "calibration-challenge --miscalibration 1,2,3", "calibration-challenge --lighting nowhere",
+                                 "calibration-challenge --venue nowhere", "eval challenge --venue nowhere --trials 1"}) {
     const CommandResult r = runCommand(args + json);
     EXPECT_EQ(r.code, 2) << args << ": " << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << ": " << r.out;

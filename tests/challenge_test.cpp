@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <random>
 
 #include "controllers/StandController.h"
@@ -17,6 +18,7 @@
 #include "robot/Paths.h"
 #include "scenarios/CalibrationChallenge.h"
 #include "scenarios/ChallengeReferee.h"
+#include "scenarios/Venue.h"
 #include "sim/World.h"
 #include "tests/support/ModuleHarness.h"
 
@@ -179,6 +181,56 @@ TEST(ChallengeBalls, BallsOffTheFieldOrOnALineAreRefused) {
   EXPECT_EQ(error({Eigen::Vector2d(-2, 1), Eigen::Vector2d(4.5, 1)}), "venue.json: the opponent half's ball lies on a line");
   EXPECT_EQ(error({Eigen::Vector2d(2, 1), Eigen::Vector2d(2, -1)}), "venue.json: the own half's ball lies in the other half");
   EXPECT_EQ(error({Eigen::Vector2d(-2, NAN), Eigen::Vector2d(2, -1)}), "venue.json: the own half's ball lies outside the field");
+}
+
+TEST(ChallengeVenues, TheCommittedVenuesKeepTheDrawsRules) {
+  const FieldDimensions field = standardField();
+  const FieldModel model = FieldModel::from(field);
+  const std::vector<sim::Venue> venues = sim::loadVenues(dataPath("config/venues.json"), field);
+  ASSERT_GE(venues.size(), 3u) << "the rules average over at least three venues";
+  for (const sim::Venue& v : venues) {
+    for (const Eigen::Vector2d& b : v.balls) {
+      for (const FieldLine& l : model.lines) EXPECT_GE(segmentDistance(b, l.from, l.to), 0.15) << v.name << " " << l.name;
+      EXPECT_GE(std::abs(b.norm() - model.centerCircleRadius), 0.15) << v.name;
+      for (const Eigen::Vector2d& c : model.penaltyCrosses) EXPECT_GE((b - c).norm(), 0.15) << v.name;
+      for (const Eigen::Vector2d& s : {Eigen::Vector2d(-4.5, 0), Eigen::Vector2d(0, 0), Eigen::Vector2d(4.5, 0),
+                                       Eigen::Vector2d(calibration::initialPosition(field, 1).head<2>()),
+                                       Eigen::Vector2d(calibration::initialPosition(field, -1).head<2>())})
+        EXPECT_GE((b - s).norm(), 0.6) << v.name;
+    }
+    EXPECT_GE((v.balls[0] - v.balls[1]).norm(), 0.6) << v.name;
+  }
+  EXPECT_EQ(sim::venueNamed(venues, "hall-b").name, "hall-b");
+  EXPECT_THROW(sim::venueNamed(venues, "hall-z"), Error);
+}
+
+TEST(ChallengeVenues, ABadVenueFileNamesTheFileAndTheKey) {
+  const FieldDimensions field = standardField();
+  const std::string path = ::testing::TempDir() + "/venues.json";
+  auto error = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    try {
+      sim::loadVenues(path, field);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string good = R"({"name": "x", "floor_friction": 0.8, "balls": [[-2, 1], [2, -1]]})";
+  EXPECT_EQ(error(R"({"venues": [)" + good + "]}"), "");
+  EXPECT_EQ(error(R"({"venues": [{"name": "x", "floor_friction": 0.8, "balls": [[-2, 3.5], [2, -1]]}]})"),
+            path + ": venues[0].balls: the own half's ball lies outside the field");
+  EXPECT_EQ(error(R"({"venues": [{"name": "x", "floor_friction": 0.8, "balls": [[-2, 1], [-1, 1.2]]}]})"),
+            path + ": venues[0].balls: the opponent half's ball lies in the other half");
+  EXPECT_EQ(error(R"({"venues": [{"name": "x", "floor_friction": 5, "balls": [[-2, 1], [2, -1]]}]})"),
+            path + ": venues[0].floor_friction: must be a number in 0.2..2");
+  EXPECT_EQ(error(R"({"venues": [{"name": "x", "floor_friction": 0.8, "balls": [[-2, 1]]}]})"),
+            path + ": venues[0].balls: must be two [x, y] pairs (own half, opponent half)");
+  EXPECT_EQ(error(R"({"venues": [)" + good + "," + good + "]}"), path + ": venues[1].name: \"x\" is there twice");
+  EXPECT_EQ(error(R"({"venues": [{"name": "x", "floor_friction": 0.8, "balls": [[-2, 1], [2, -1]], "ball": 1}]})"),
+            path + ": venues[0].ball: unknown key");
+  EXPECT_EQ(error(R"({"venues": [)"), path + ": not valid JSON");
+  EXPECT_EQ(error(R"({"venues": []})"), path + ": venues: must be a non-empty array");
 }
 
 TEST(ChallengeScoring, TheRefereesRounding) {

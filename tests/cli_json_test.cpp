@@ -57,6 +57,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "train ball") return "train ball --scenes 5 --lightings 1 --iterations 2 --out " + dir + "/ball.yml";
   if (path == "train friction") return "train friction --rolls 2 --max-speed 1";
   if (path == "calibrate") return "calibrate";
+  if (path == "eval challenge") return "eval challenge --trials 1 --lighting default --time-limit 2";
   if (path == "calibration-challenge") return "calibration-challenge --time-limit 3";
   if (path == "modules") return "modules";
   return "";

@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -23,6 +26,25 @@ namespace {
 using E = OptionSpec::Element;
 
 const std::string kFieldFile = "config/field_dimensions.json";
+// --venue: none, random, or a venue of config/venues.json (checked in full, against the run's
+// field, when the run starts: scenarios/Venue.h).
+std::string venueProblem(const std::string& value) {
+  if (value == "none" || value == "random") return "";
+  std::ifstream in(dataPath("config/venues.json"));
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  std::string names;
+  if (!j.is_discarded() && j.contains("venues") && j["venues"].is_array())
+    for (const auto& v : j["venues"])
+      if (v.is_object() && v.contains("name") && v["name"].is_string()) {
+        if (v["name"] == value) return "";
+        names += (names.empty() ? "" : ", ") + v["name"].get<std::string>();
+      }
+  return "unknown venue '" + value + "' (none, random" + (names.empty() ? "" : ", " + names) + ")";
+}
+const std::string kVenueHelp =
+    "none (phase 2's balls from the seed), random (the trial seed's turn through config/venues.json) or a venue's name "
+    "there: its taped balls and carpet friction";
+
 const std::string kLightingHelp =
     "lighting: a preset (default, bright, dark, warm, cold, shadows) or a key=value list "
     "(intensity, temperature, shadows, elevation, azimuth, ambient, noise; config/lighting.json)";
@@ -274,6 +296,22 @@ void CommandLine::declare() {
     cl.outputFile("--rows", l.rows,
                   "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
     debugOptions(cl, l.debug);
+    EvalChallengeOptions& ec = o.evalChallenge;
+    Command& cc = leaf(eval, "challenge",
+                       "many seeded calibration challenges (both phases): per category median, p95 and worst, "
+                       "terminations by reason, the failed trials by seed",
+                       ec.common);
+    seedJsonField(cc);
+    cc.count("--trials", ec.trials, 1, 100000, "trials; trial i has seed --seed + i (its offsets, start, balls, robot)");
+    cc.text("--lighting", ec.lighting, "SPEC",
+            "sweep (trial seed s takes preset s mod 7 of the sweep) or " + kLightingHelp + " (default sweep)");
+    cc.flag("--randomize", ec.randomize, randomize + " (the head's aside)");
+    cc.flag("--skip-calibration", ec.skipCalibration, "no phase 1: phase 2 with the factory calibration (the baseline)");
+    cc.text("--venue", ec.venue, "NAME", kVenueHelp, venueProblem);
+    cc.number("--max-offset", ec.maxOffset, 0, 6, "deg", "injected camera offsets uniform in +-this per parameter");
+    cc.number("--time-limit", ec.timeLimit, 1, 600, "s", "each phase's time (the rules' 10 min; shorter for a quick look)");
+    cc.inputFile("--model", ec.model, "the robot's MJCF (default models/nao_v6.xml)");
+    cc.outputFile("--rows", ec.rows, "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
     EvalMotionOptions& w = o.evalWalk;
     w.seconds = 60;
     Command& cw = leaf(eval, "walk", "random walk commands every 2-5 s: falls, odometry error", w.common);
@@ -369,6 +407,8 @@ void CommandLine::declare() {
     c.flag("--randomize", k.randomize, "a 'foreign' robot: link masses +-5%, joint offsets +-1 deg (the head's aside), floor friction 0.6-1.0");
     c.number("--time-limit", k.timeLimit, 1, 600, "s", "each phase's time (the rules' 10 min; shorter for a quick look: a phase over it terminates the run)");
     c.flag("--skip-calibration", k.skipCalibration, "no phase 1: phase 2 with the factory calibration (the fast, imprecise baseline)");
+    c.text("--venue", k.venue, "NAME", kVenueHelp, venueProblem);
+    c.number("--max-offset", k.maxOffset, 0, 6, "deg", "--miscalibration random: offsets uniform in +-this per parameter");
     c.outputFolder("--images", k.images, "write the calibration's views, the before/after pictures and a top-down picture of the run");
     debugOptions(c, k.debug);
   }

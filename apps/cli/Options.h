@@ -110,6 +110,14 @@ struct EvalLocalizationOptions {
   DebugOptions debug;
 };
 
+struct EvalChallengeOptions {
+  CommonOptions common;
+  std::string lighting = "sweep", rows, model, venue = "none";
+  int trials = 100;
+  double maxOffset = 3, timeLimit = 600;
+  bool randomize = false, skipCalibration = false;
+};
+
 struct EvalMotionOptions {  // eval walk, walk-to, getup
   CommonOptions common;
   int trials = 20;
@@ -156,9 +164,9 @@ struct ChallengeCommandOptions {
   CommonOptions common;
   SimOptions sim{"default", "random", {}, ""};
   DebugOptions debug;
-  std::string start = "seed", images;
+  std::string start = "seed", images, venue = "none";
   bool randomize = false, skipCalibration = false;
-  double timeLimit = 600;
+  double timeLimit = 600, maxOffset = 3;
 };
 
 struct ModulesOptions {
@@ -177,6 +185,7 @@ struct Options {
   EvalPerceptionOptions evalPerception;
   EvalCalibrationOptions evalCalibration;
   EvalLocalizationOptions evalLocalization;
+  EvalChallengeOptions evalChallenge;
   EvalMotionOptions evalWalk, evalWalkTo, evalGetUp;
   WalkOptions walk;
   KickOptions kick;

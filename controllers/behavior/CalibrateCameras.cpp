@@ -7,20 +7,10 @@ namespace nao::behavior {
 namespace {
 constexpr double kDeg = M_PI / 180;
 
-GoToPose::Params goToParams(const CalibrateCameras::Params& p) {
-  GoToPose::Params g;
-  g.arrivedDistance = p.arrivedDistance;
-  g.arrivedAngle = p.arrivedAngle;
-  // The estimate of an uncalibrated robot wanders by a few centimetres: re-targeting on each
-  // wander would keep it stepping and never arrive.
-  g.retargetNear = p.retargetNear;
-  g.retargetAngle = p.retargetAngle;
-  return g;
-}
 }  // namespace
 
 CalibrateCameras::CalibrateCameras(const FieldDimensions& field, const JointArray& standPosture, const Params& params)
-    : field_(field), stand_(standPosture), params_(params), goTo_(goToParams(params)) {}
+    : field_(field), stand_(standPosture), params_(params) {}
 
 void CalibrateCameras::restart(double time) {
   machine_.state = State::Done;  // so that go() records the time
@@ -29,7 +19,6 @@ void CalibrateCameras::restart(double time) {
   current_ = 0;
   round_ = 0;
   summary_ = {};
-  goTo_.restart();
 }
 
 void CalibrateCameras::planFrom(const RobotPose& pose) {
@@ -38,6 +27,11 @@ void CalibrateCameras::planFrom(const RobotPose& pose) {
   const int sideSign = pose.pose.y >= 0 ? 1 : -1;
   side_ = calibration::ownGoalBoxSide(field_, sideSign);
   position_ = calibration::calibrationPosition(side_);
+  // The rules' start is known: the odometry from it beats the uncalibrated localization (whose
+  // distances the camera offsets distort) on the way to the box.
+  const Eigen::Vector3d start = calibration::initialPosition(field_, sideSign);
+  startPose_ = Pose2(start.x(), start.y(), start.z());
+  startOdometry_ = pose.odometry;
   // Aligning looks at the box side as the plan's straight top view from there does.
   for (const calibration::CalibrationView& v : calibration::planViews(side_, position_.head<2>(), stand_))
     if (v.camera == CameraId::Top && std::abs(v.headYaw) < 1e-6) alignPitch_ = v.headPitch;
@@ -60,6 +54,12 @@ void CalibrateCameras::nextView(double time, Output& out) {
   ++walkId_;
   machine_.go(State::Turn, time);
   (void)out;
+}
+
+RobotPose CalibrateCameras::byOdometry(const RobotPose& pose) const {
+  RobotPose here = pose;
+  here.pose = startPose_ * (startOdometry_.inverse() * pose.odometry);
+  return here;
 }
 
 void CalibrateCameras::planViewsFromHere(const RobotPose& here, bool aligned, double time, Output& out) {
@@ -113,7 +113,7 @@ void CalibrateCameras::align(const BehaviorInput& in, const CameraPercepts& perc
   }
   if (t - alignSince_ < params_.alignLook + params_.alignGather) return;
   if (alignImages_ == 0 || alignStep_ >= params_.alignSteps) {
-    planViewsFromHere(in.pose, false, t, out);  // no line in view (or enough tries): go on from here
+    planViewsFromHere(byOdometry(in.pose), false, t, out);  // no line in view (or enough tries): go on from here
     return;
   }
   const Eigen::Vector2d middle = alignMiddle_ / alignImages_;
@@ -127,7 +127,7 @@ void CalibrateCameras::align(const BehaviorInput& in, const CameraPercepts& perc
   const double heading = std::atan2(normal.y(), normal.x());
   if (goal.norm() < params_.alignDistance && std::abs(heading) < params_.alignAngle) {
     summary_.aligned = true;
-    planViewsFromHere(in.pose, true, t, out);
+    planViewsFromHere(byOdometry(in.pose), true, t, out);
     return;
   }
   // Walk there, in the odometry frame at this image's time.
@@ -182,11 +182,17 @@ CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const Ca
       stand();
       if (in.pose.valid && machine_.timeIn(t) >= params_.settleTime) {
         planFrom(in.pose);
+        ++walkId_;
         machine_.go(State::GoToPosition, t);
       }
       break;
-    case State::GoToPosition:
-      if (goTo_.run(in, Pose2(position_.x(), position_.y(), position_.z()), out.motion)) {
+    case State::GoToPosition: {
+      // On odometry from the start to the calibration position.
+      out.motion.motion = MotionType::WalkTo;
+      out.motion.walkTarget = startOdometry_ * (startPose_.inverse() * Pose2(position_.x(), position_.y(), position_.z()));
+      out.motion.walkTargetInOdometry = true;
+      out.motion.walkTargetId = walkId_;
+      if (machine_.timeIn(t) >= params_.turnSettle && in.motion.walkToReached) {
         alignStep_ = 0;
         alignWalking_ = false;
         alignSince_ = t;
@@ -195,6 +201,7 @@ CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const Ca
         machine_.go(State::Align, t);
       }
       break;
+    }
     case State::Align:
       align(in, percepts, out);
       break;

@@ -1,7 +1,9 @@
 #pragma once
 // Option: the Autonomous Calibration Challenge's phase 1 (../shared/reference/calibration-challenge.md,
-// B-Human 2021 section 3). From the start on a side line it localizes (the start's two poses),
-// walks to the side of its own goal box on that side (calibrationPosition), then aligns itself
+// B-Human 2021 section 3). From the start on a side line it localizes (the start's two poses:
+// which side line), walks on odometry from that known start to the side of its own goal box on
+// that side (calibrationPosition; the uncalibrated localization's distances are what the camera
+// offsets distort, and its validity flickers: it walked a robot off the field), then aligns itself
 // with the box's short line as the top camera sees it (the line's bearing and direction do not
 // depend on the camera's pitch, which the uncalibrated localization's distances do: 2.8 deg of
 // top-camera pitch put the robot 26 cm off, on the front line's extension, where the box's long
@@ -15,7 +17,6 @@
 #include <vector>
 
 #include "controllers/behavior/BehaviorInput.h"
-#include "controllers/behavior/GoToPose.h"
 #include "controllers/behavior/StateMachine.h"
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
@@ -39,10 +40,6 @@ class CalibrateCameras {
     int maxRounds = 3;             // solve attempts before reporting what there is
     double verifyMaxDeg = 0.1;     // the check view's largest angle residual at the applied offsets
     double headMaxSpeed = 1.5;     // rad/s to each view's head angles
-    double arrivedDistance = 0.1;  // m: the calibration position by the estimate ...
-    double arrivedAngle = 0.1;     // rad
-    double retargetNear = 0.08;    // m: the walk's target moves only when the estimate moves it this much ...
-    double retargetAngle = 0.1;    // rad: ... or this much
     double alignLook = 0.8;        // s with the head on the box before the short line counts
     double alignGather = 0.6;      // s of images averaged per alignment step
     double alignDistance = 0.04;   // m: aligned when the short line's middle is this near straight ahead ...
@@ -93,6 +90,8 @@ class CalibrateCameras {
   // The odometry target that turns the body in place to a field heading.
   Pose2 turnTarget(double heading) const;
   void planViewsFromHere(const RobotPose& here, bool aligned, double time, Output& out);
+  // `pose` with its field pose by the odometry since the start (the start being the rules' one).
+  RobotPose byOdometry(const RobotPose& pose) const;
   // One alignment step on the top camera's percepts: the box's short line (near, ahead, square
   // to the view) gives where the calibration position is relative to the robot.
   void align(const BehaviorInput& in, const CameraPercepts& percepts, Output& out);
@@ -105,13 +104,13 @@ class CalibrateCameras {
   Eigen::Vector3d position_ = Eigen::Vector3d::Zero();  // the calibration position (field)
   std::vector<PlannedView> views_;
   std::size_t current_ = 0;     // index into views_ (the check view is views_.back() in Verify)
-  RobotPose anchor_;            // the estimate on arrival: field headings become odometry turns
+  RobotPose anchor_;            // the pose on arrival: field headings become odometry turns
+  Pose2 startPose_, startOdometry_;  // the rules' start (field) and the odometry there
   int nextViewId_ = 1;
-  int walkId_ = 1000000;  // its own walks' target ids, apart from goTo_'s (which count from 1)
+  int walkId_ = 0;
   int solutionWanted_ = 0;
   int appliedBefore_ = 0;
   int round_ = 0;
-  GoToPose goTo_;
   // Alignment: the short line's middle and direction (robot frame) summed over the gathered images.
   Eigen::Vector2d alignMiddle_ = Eigen::Vector2d::Zero(), alignDirection_ = Eigen::Vector2d::Zero();
   int alignImages_ = 0, alignStep_ = 0;
@@ -132,10 +131,6 @@ void describe(V& v, CalibrateCameras::Params& p) {
   v("maxRounds", p.maxRounds, 1, 10);
   v("verifyMaxDeg", p.verifyMaxDeg, 0.001, 10.0);
   v("headMaxSpeed", p.headMaxSpeed, 0.1, 10.0);
-  v("arrivedDistance", p.arrivedDistance, 0.01, 1.0);
-  v("arrivedAngle", p.arrivedAngle, 0.01, 1.0);
-  v("retargetNear", p.retargetNear, 0.0, 1.0);
-  v("retargetAngle", p.retargetAngle, 0.0, 1.0);
   v("alignLook", p.alignLook, 0.0, 5.0);
   v("alignGather", p.alignGather, 0.0, 5.0);
   v("alignDistance", p.alignDistance, 0.001, 1.0);
