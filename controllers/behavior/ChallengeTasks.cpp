@@ -126,9 +126,9 @@ ChallengeTasks::Output ChallengeTasks::run(const BehaviorInput& in, const Challe
   auto sweep = [&] {
     out.lookActive = false;
     out.head.mode = HeadMotionRequest::Mode::Sweep;
-    out.head.sweepAmplitude = 1.6;
-    out.head.sweepPitch = 0.15;
-    out.head.sweepSpeed = 1.0;
+    out.head.sweepAmplitude = params_.sweepAmplitude;
+    out.head.sweepPitch = params_.sweepPitch;
+    out.head.sweepSpeed = params_.sweepSpeed;
   };
   auto planApproach = [&] {
     // approachDistance short of the ball on the line from here, facing it.
@@ -166,20 +166,21 @@ ChallengeTasks::Output ChallengeTasks::run(const BehaviorInput& in, const Challe
         machine_.go(State::Approach, t);
         break;
       }
-      // The half's centre, then turns of a quarter there, looking round at each.
-      const double cx = (ownHalf ? -1 : 1) * field_.length / 4;
-      const double heading = (ownHalf ? M_PI : 0.0) + (searchIndex_ % 4) * M_PI / 2;
-      if (walkTo(in, Pose2(cx, 0, heading), balls, out)) {
-        sweep();
-        out.motion = MotionRequest{};
-        if (machine_.timeIn(t) >= params_.searchLook) {
-          ++searchIndex_;
-          ++summary_.searchPoses;
-          machine_.since = t;
-        }
-      } else {
-        machine_.since = t;  // the look starts on arrival
+      // To the half's centre (near is enough), then turning in place there, the head sweeping:
+      // from the centre every point of the half is within 3.5 m.
+      const Eigen::Vector2d centre((ownHalf ? -1 : 1) * field_.length / 4, 0);
+      if (searchIndex_ == 0 && (here - centre).norm() > params_.searchReached) {
+        walkTo(in, Pose2(centre.x(), centre.y(), std::atan2(centre.y() - here.y(), centre.x() - here.x())), balls, out);
+        break;
       }
+      if (searchIndex_ == 0) {
+        searchIndex_ = 1;
+        ++summary_.searchPoses;
+      }
+      sweep();
+      out.motion = MotionRequest{};
+      out.motion.motion = MotionType::Walk;
+      out.motion.walkSpeed = Pose2(0, 0, params_.searchTurnSpeed);
       break;
     }
     case State::Approach: {

@@ -32,7 +32,12 @@ class ChallengeTasks {
     double observeMinTime = 1.0;     // s observing at least ...
     double observeTimeout = 8.0;     // s, then the report takes the best there is
     int observeSamples = 30;         // ... until this many new near observations came in
-    double searchLook = 4.0;         // s looking around from each search pose
+    double searchLook = 7.0;         // s looking around from the start before walking to search
+    double searchReached = 0.3;      // m: the half's centre reached for the search this near
+    double searchTurnSpeed = 0.35;   // rad/s turning in place there
+    double sweepAmplitude = 1.8;     // rad of head yaw each way while looking around ...
+    double sweepPitch = 0.15;        // rad ...
+    double sweepSpeed = 0.6;         // rad/s
     double ballClearance = 0.45;     // m: a walk passing a known ball nearer than this goes round it
     double detourClearance = 0.7;    // m: the detour's waypoint from the ball
     double waypointReached = 0.25;   // m: a detour waypoint counts as passed this near
@@ -112,6 +117,11 @@ void describe(V& v, ChallengeTasks::Params& p) {
   v("observeTimeout", p.observeTimeout, 0.1, 60.0);
   v("observeSamples", p.observeSamples, 1, 1000);
   v("searchLook", p.searchLook, 0.1, 60.0);
+  v("searchReached", p.searchReached, 0.01, 3.0);
+  v("searchTurnSpeed", p.searchTurnSpeed, 0.05, 1.0);
+  v("sweepAmplitude", p.sweepAmplitude, 0.1, 2.0);
+  v("sweepPitch", p.sweepPitch, -0.6, 0.5);
+  v("sweepSpeed", p.sweepSpeed, 0.05, 3.0);
   v("ballClearance", p.ballClearance, 0.0, 3.0);
   v("detourClearance", p.detourClearance, 0.0, 3.0);
   v("waypointReached", p.waypointReached, 0.01, 3.0);
