@@ -8,6 +8,7 @@
 #include <random>
 
 #include "robot/Error.h"
+#include "scenarios/EvalRows.h"
 #include "scenarios/CalibrationChallenge.h"
 
 namespace nao::sim {
@@ -153,14 +154,7 @@ nlohmann::json evalChallenge(const ChallengeEvalOptions& o, std::vector<nlohmann
   if (o.trials < 1) throw Error("--trials", "must be at least 1");
   if (o.lightings.empty()) throw Error("--lighting", "no lighting");
   const nlohmann::json settings = challengeEvalSettings(o);
-  std::map<std::uint64_t, nlohmann::json> done;
-  for (auto& r : rows) {
-    if (!r.is_object() || !r.contains("seed") || !r.contains("settings")) throw Error("--rows", "a row without seed or settings");
-    if (r.at("settings") != settings)
-      throw Error("--rows", "rows of other settings (" + r.at("settings").dump() + ", this run " + settings.dump() + ")");
-    const auto seed = r.at("seed").get<std::uint64_t>();  // before the move: json's operator= takes its argument by value
-    done[seed] = std::move(r);
-  }
+  std::map<std::uint64_t, nlohmann::json> done = rowsBySeed(std::move(rows), settings);
   std::vector<nlohmann::json> mine;
   for (int i = 0; i < o.trials; ++i) {
     const std::uint64_t seed = o.seed + static_cast<std::uint64_t>(i);

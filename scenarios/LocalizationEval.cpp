@@ -15,6 +15,7 @@
 #include "representations/modeling/BallModel.h"
 #include "representations/modeling/RobotPose.h"
 #include "robot/Error.h"
+#include "scenarios/EvalRows.h"
 #include "scenarios/WalkEval.h"
 #include "sim/CameraRenderer.h"
 #include "sim/SceneBuilder.h"
@@ -480,14 +481,7 @@ nlohmann::json evalLocalization(const LocalizationEvalOptions& o, std::vector<nl
   if (o.trials < 1) throw Error("--trials", "must be at least 1");
   if (o.lightings.empty()) throw Error("--lighting", "no lighting");
   const nlohmann::json settings = localizationEvalSettings(o);
-  std::map<std::uint64_t, nlohmann::json> done;
-  for (auto& r : rows) {
-    if (!r.is_object() || !r.contains("seed") || !r.contains("settings")) throw Error("--rows", "a row without seed or settings");
-    if (r.at("settings") != settings)
-      throw Error("--rows", "rows of other settings (" + r.at("settings").dump() + ", this run " + settings.dump() + ")");
-    const auto seed = r.at("seed").get<std::uint64_t>();
-    done[seed] = std::move(r);
-  }
+  std::map<std::uint64_t, nlohmann::json> done = rowsBySeed(std::move(rows), settings);
   std::vector<nlohmann::json> mine;
   int count = 0;
   for (int i = 0; i < o.trials; ++i) {
