@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (LoLA and GameController parsers, the module parameter loader, the
-# command line) with Debian's clang in build-fuzz (or $NAO_FUZZ_BUILD_DIR) and runs them one
-# after the other, one job each.
+# command line, the calibration log reader) with Debian's clang in build-fuzz (or $NAO_FUZZ_BUILD_DIR)
+# and runs them one after the other, one job each.
 #   bash .ci/fuzz.sh              1,000,000 executions each (the figure the README quotes)
 #   bash .ci/fuzz.sh -runs N      N executions each
 #   bash .ci/fuzz.sh -seconds S   S seconds each (CI)
@@ -18,7 +18,7 @@ case "${1:-}" in
 esac
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNAO_FUZZ=ON \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
-cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz argv_fuzz fuzz_seeds -j2
+cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz argv_fuzz calibration_log_fuzz fuzz_seeds -j2
 "$b"/bin/fuzz_seeds "$b"/seeds
 # The parameter loader starts from the committed parameter files.
 mkdir -p "$b"/seeds/params
@@ -51,7 +51,7 @@ render --seed -1 --pose nan,1,2 --out
 eval bogus --trials 99999999999
 SEEDS
 mkdir -p "$b"/findings
-for target in lola gamecontroller params argv; do
+for target in lola gamecontroller params argv calibration_log; do
   corpus="$b"/corpus/$target
   mkdir -p "$corpus"
   log="$b"/$target.log

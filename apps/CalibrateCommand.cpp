@@ -13,7 +13,9 @@
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
+#include "controllers/CalibrationLogging.h"
 #include "controllers/RobotProgram.h"
+#include "controllers/modules/ModuleField.h"
 #include "perception/calibration/CalibrationStore.h"
 #include "robot/Parameters.h"
 #include "robot/Error.h"
@@ -98,23 +100,99 @@ nlohmann::json runJson(const sim::CalibrationRunResult& r) {
   return j;
 }
 
+modules::Calibrator::Params calibratorParams(const CalibrateOptions& options) {
+  modules::Calibrator::Params calibrator =
+      loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
+  calibrator.solver = options.solver;
+  calibrator.compareSolvers = options.compare;
+  calibrator.lines = options.lines;
+  return calibrator;
+}
+
+// --save: the solution stored for the head, unless the store refuses it.
+void save(const CalibrateOptions& options, const std::string& headId, const cal::CalibrationSolution& solution,
+          const CameraCalibration& offsets, nlohmann::json& j) {
+  const cal::CalibrationStore store(options.store);
+  cal::CalibrationRecord rec;
+  rec.offsets = offsets;
+  rec.rmsAngleDeg = solution.rmsAngleDeg;
+  rec.rmsDepthM = solution.rmsDepthM;
+  rec.samples = static_cast<int>(solution.used.size());
+  rec.solver = options.solver;
+  rec.converged = solution.solver.converged && solution.accepted;
+  const cal::SaveOutcome saved = store.save(headId, rec);
+  j["saved"] = saved.saved;
+  j["store_path"] = saved.path;
+  if (!saved.saved) j["save_refused"] = saved.reason;
+  std::fprintf(stderr, "calibrate: %s %s\n", saved.saved ? "saved" : "NOT saved:",
+               saved.saved ? saved.path.c_str() : saved.reason.c_str());
+}
+
+// --from-log: the robot program's Calibrator on the recorded views, then its solve; no simulator.
+int calibrateFromLog(const CalibrateOptions& options) {
+  const cal::CalibrationLog log = cal::readCalibrationLog(options.fromLog);
+  if (!options.headId.empty() && options.headId != log.headId)
+    throw Error(options.fromLog, "recorded by head '" + log.headId + "', not by '" + options.headId +
+                                     "' (--head-id): another robot's views calibrate that robot");
+  if (log.records.empty()) throw Error(options.fromLog, "holds no views: nothing to solve from");
+  ModuleContext context;
+  context.configDir = RobotProgramConfig::defaultConfigDir();
+  context.headId = log.headId;
+  context.params["Calibrator"] = calibratorParams(options);
+  context.params[modules::kFieldParams] = calibrationFieldFrom(options.common);
+  DebugSink debug(options.debug);
+  context.debug = debug.channels();
+  const CalibrationReplay replay = replayCalibrationLog(log, context);
+  const CalibrationStatus& s = replay.status;
+  nlohmann::json views = nlohmann::json::array();
+  int agree = 0;
+  for (const ReplayedView& v : replay.views) {
+    agree += v.accepted == v.liveAccepted;
+    views.push_back({{"view", v.viewId}, {"camera", cameraName(v.camera)}, {"accepted", v.accepted}, {"reason", v.reason},
+                     {"live_accepted", v.liveAccepted}, {"live_reason", v.liveReason}});
+  }
+  const auto offsets = s.offsets.toArray();
+  std::fprintf(stderr, "calibrate: from %s (head %s, %s): %zu views, %d top and %d bottom samples (%d of %zu verdicts as live); "
+               "%s, %s\n",
+               options.fromLog.c_str(), log.headId.c_str(), log.backend.c_str(), log.records.size(), s.samples[0],
+               s.samples[1], agree, replay.views.size(), s.converged ? "converged" : "did NOT converge",
+               s.accepted ? "accepted" : ("NOT accepted: " + s.reason).c_str());
+  for (int k = 0; k < 6; ++k)
+    std::fprintf(stderr, "  %-13s estimated %+7.3f deg\n", CameraCalibration::kNames[k], offsets[k] / kDeg);
+  nlohmann::json j = {{"log", options.fromLog},
+                      {"head_id", log.headId},
+                      {"backend", log.backend},
+                      {"records", log.records.size()},
+                      {"samples", {{"top", s.samples[0]}, {"bottom", s.samples[1]}}},
+                      {"samples_used", s.solution.used.size()},
+                      {"verdicts_as_live", agree},
+                      {"estimated_deg", paramsDeg(offsets)},
+                      {"converged", s.converged},
+                      {"accepted", s.accepted},
+                      {"refusal", s.reason},
+                      {"residual_rms", {{"angle_deg", s.rmsAngleDeg}, {"depth_m", s.rmsDepthM}}},
+                      {"solver", options.solver},
+                      {"views", views}};
+  if (options.save) save(options, log.headId, s.solution, s.offsets, j);
+  if (!options.common.json.empty()) writeJson(options.common.json, j);
+  return s.accepted ? 0 : 1;
+}
+
 }  // namespace
 
 int calibrateCommand(const CalibrateOptions& options) {
+  if (!options.fromLog.empty()) return calibrateFromLog(options);
   sim::CalibrationRunOptions o;
   o.field = calibrationFieldFrom(options.common);
   o.robotModel = options.sim.model;
   o.lighting = lightingFrom(options.sim.lighting);
   o.miscalibration = miscalibrationFrom(options.sim, options.common.seed);
   o.seed = options.common.seed;
-  modules::Calibrator::Params calibrator =
-      loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
-  calibrator.solver = options.solver;
-  calibrator.compareSolvers = options.compare;
-  calibrator.lines = options.lines;
+  const modules::Calibrator::Params calibrator = calibratorParams(options);
   o.calibrator = calibrator;
   o.side = options.start == "left" ? 1 : -1;
   o.imagesDir = options.images;
+  o.recordPath = options.record;
   DebugSink debug(options.debug);
   o.debug = debug.channels();
   const std::size_t limit = static_cast<std::size_t>(o.timeLimit);
@@ -140,22 +218,7 @@ int calibrateCommand(const CalibrateOptions& options) {
   j["lighting"] = lightingJson(o.lighting);
   j["seed"] = o.seed;
   j["files"] = r.imagesWritten;
-  if (options.save) {
-    const cal::CalibrationStore store(options.store);
-    cal::CalibrationRecord rec;
-    rec.offsets = r.estimate;
-    rec.rmsAngleDeg = r.solution.rmsAngleDeg;
-    rec.rmsDepthM = r.solution.rmsDepthM;
-    rec.samples = static_cast<int>(r.solution.used.size());
-    rec.solver = calibrator.solver;
-    rec.converged = r.solution.solver.converged && r.solution.accepted;
-    const cal::SaveOutcome saved = store.save(r.headId, rec);
-    j["saved"] = saved.saved;
-    j["store_path"] = saved.path;
-    if (!saved.saved) j["save_refused"] = saved.reason;
-    std::fprintf(stderr, "calibrate: %s %s\n", saved.saved ? "saved" : "NOT saved:",
-                 saved.saved ? saved.path.c_str() : saved.reason.c_str());
-  }
+  if (options.save) save(options, r.headId, r.solution, r.estimate, j);
   if (!options.common.json.empty()) writeJson(options.common.json, j);
   return r.finished && r.applied && r.solution.accepted ? 0 : 1;
 }

@@ -74,6 +74,7 @@ int challengeCommand(const ChallengeCommandOptions& options) {
   run.randomize = options.randomize;
   run.timeLimit = options.timeLimit;
   run.imagesDir = options.images;
+  run.recordPath = options.record;
   o.skipCalibration = options.skipCalibration;
   if (options.venue != "none") {
     const std::vector<sim::Venue> venues = sim::loadVenues(dataPath("config/venues.json"), run.field);

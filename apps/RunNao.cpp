@@ -20,6 +20,7 @@
 #include <future>
 #include <memory>
 
+#include "controllers/CalibrationLogging.h"
 #include "controllers/RobotProgram.h"
 #include "representations/modeling/BallModel.h"
 #include "representations/perception/CameraPercepts.h"
@@ -283,6 +284,7 @@ int runNao(const RunOptions& options) {
   // count): the budget a team sees on the Atom. Cognition measures its own thread.
   nlohmann::json beliefs = nlohmann::json::array();
   std::array<PerceptTally, kNumCameras> seen{};
+  std::unique_ptr<CalibrationRecorder> recorder;  // --record
   double cpuSumMs = 0, cpuMaxMs = 0;
   std::uint64_t cpuCycles = 0;
   if (program) {
@@ -301,8 +303,10 @@ int runNao(const RunOptions& options) {
     // A calibration the robot program applied (its Calibrator) is stored for this head, here in
     // the cognition thread, never in the LoLA loop; the next start loads it.
     const std::string storeHead = backend.robotInfo().headId;
-    program->setCognitionObserver([&beliefs, &seen, next = 0.0, storedId = 0, storeHead](
+    if (!nao.record.empty()) recorder = std::make_unique<CalibrationRecorder>(storeHead, "nao");
+    program->setCognitionObserver([&beliefs, &seen, next = 0.0, storedId = 0, storeHead, rec = recorder.get()](
                                       const CameraImage& image, const Blackboard& cognition) mutable {
+      if (rec) rec->observe(image, cognition);
       if (cognition.has<CalibrationStatus>() && cognition.read<CalibrationStatus>().appliedId != storedId) {
         const CalibrationStatus& c = cognition.read<CalibrationStatus>();
         storedId = c.appliedId;
@@ -425,6 +429,10 @@ int runNao(const RunOptions& options) {
                processed[0], processed[1], static_cast<double>(processed[0]) / runSeconds,
                static_cast<double>(processed[1]) / runSeconds, dropped[0], dropped[1], cognitionMeanMs,
                cognition.wallMsMax, cognitionCpuMs);
+  if (recorder) {
+    recorder->write(nao.record);
+    logLine("run: calibration log " + nao.record + " (" + std::to_string(recorder->log().records.size()) + " views)");
+  }
   if (!options.common.json.empty()) {
     const GameState& g = program ? program->blackboard().read<GameState>() : gameController.state();
     nlohmann::json j = {

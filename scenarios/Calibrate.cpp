@@ -9,6 +9,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "controllers/CalibrationLogging.h"
 #include "controllers/RobotProgram.h"
 #include "controllers/StandController.h"
 #include "perception/CameraModel.h"
@@ -237,6 +238,12 @@ void runCalibrationPhase(ChallengeSession& session, const CalibrationRunOptions&
     views->captures.push_back(std::move(cap));
   });
   std::vector<Capture>& captures = views->captures;
+  std::shared_ptr<CalibrationRecorder> recorder;
+  if (!o.recordPath.empty()) {
+    recorder = std::make_shared<CalibrationRecorder>(session.headId(), "sim");
+    session.addCognitionObserver(
+        [recorder](const CameraImage& image, const Blackboard& cognition) { recorder->observe(image, cognition); });
+  }
 
   // Two balls near the halves' centres, the shield, then the start signal: chest + head front
   // held 1.2 s; the rules' clock starts when the hold reaches 1 s (the robot's own rule fires then).
@@ -263,6 +270,7 @@ void runCalibrationPhase(ChallengeSession& session, const CalibrationRunOptions&
     result.terminated = "phase_time";
     session.note("termination", "phase_time: no \"Calibration finished\" within the phase's time");
   }
+  if (recorder) recorder->write(o.recordPath);
   result.pathLength = session.pathLength() - pathBefore;
   result.maxStep = session.maxStep();
   result.fell = session.falls() > 0;

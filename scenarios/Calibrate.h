@@ -42,6 +42,7 @@ struct CalibrationRunOptions {
   std::optional<modules::Calibrator::Params> calibrator;
   std::uint64_t seed = 1;
   std::string imagesDir;                  // non-empty: every view annotated, and the Fig. 2 pictures
+  std::string recordPath;                 // non-empty: the calibration log written here (controllers/CalibrationLogging.h)
   double shieldSeconds = 2;               // the camera shield before the start (dark frames)
   double timeLimit = 600;                 // s of the phase (the rules' 10 min)
   bool randomize = false;                 // a foreign robot (ChallengeSetup::randomize)

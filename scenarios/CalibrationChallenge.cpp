@@ -6,7 +6,6 @@
 #include <cmath>
 #include <map>
 #include <random>
-#include <regex>
 
 #include "perception/calibration/CalibrationViews.h"
 #include "perception/vision/Annotate.h"
@@ -17,6 +16,7 @@
 namespace nao::sim {
 
 namespace {
+
 constexpr double kDeg = M_PI / 180;
 constexpr double kLineClearance = 0.15;  // m from a ball's centre to a line's centre or a mark
 constexpr double kTargetClearance = 0.6; // m from the start and the three spots
@@ -54,6 +54,24 @@ ChallengeDraw challengeDraw(std::uint64_t seed, double maxOffsetDeg) {
   d.offsets = CameraCalibration::fromArray(offsets);
   d.side = rng() % 2 ? 1 : -1;
   return d;
+}
+
+std::optional<Eigen::Vector2d> parseBallSentence(const std::string& text) {
+  static const std::string prefix = "The ball is at: ";
+  if (text.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  std::size_t at = prefix.size();
+  auto integer = [&](long& value) {
+    const std::size_t start = at;
+    if (at < text.size() && text[at] == '-') ++at;
+    const std::size_t digits = at;
+    while (at < text.size() && text[at] >= '0' && text[at] <= '9') ++at;
+    if (at == digits || at - digits > 9) return false;
+    value = std::stol(text.substr(start, at - start));
+    return true;
+  };
+  long x = 0, y = 0;
+  if (!integer(x) || at >= text.size() || text[at++] != ' ' || !integer(y) || at != text.size()) return std::nullopt;
+  return Eigen::Vector2d(static_cast<double>(x) / 1000, static_cast<double>(y) / 1000);
 }
 
 double roundTo(double value, double step) { return std::round(value / step) * step; }
@@ -142,7 +160,6 @@ ChallengeResult runChallenge(const ChallengeOptions& o) {
   const double phaseStart = taskStart;
   if (o.progress) session.progress = [&](double t) { o.progress(2, t - phaseStart); };
   if (!o.run.imagesDir.empty()) session.keepLastViews();
-  const std::regex ballSentence(R"(^The ball is at: (-?\d+) (-?\d+)$)");
   const std::array<Eigen::Vector2d, 3> spot = spots(o.run.field);
   for (int k = 0; k < 5; ++k) {
     const double deadline = session.time() + std::max(0.0, o.run.timeLimit - result.evaluationSeconds);
@@ -162,9 +179,8 @@ ChallengeResult runChallenge(const ChallengeOptions& o) {
     task.said = report->text;
     task.simSeconds = report->t - taskStart;
     result.evaluationSeconds += task.simSeconds;
-    std::smatch m;
-    if (ballTask && std::regex_match(report->text, m, ballSentence))
-      task.reported = Eigen::Vector2d(std::stod(m[1]) / 1000, std::stod(m[2]) / 1000);
+    if (ballTask)
+      task.reported = parseBallSentence(report->text);
     else if (!ballTask && report->text == "Finished walking")
       task.reported = Eigen::Vector2d(session.world().robotPose(0).head<2>());
     if (task.reported) task.error = (*task.reported - task.truth).norm();

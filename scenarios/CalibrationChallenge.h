@@ -72,6 +72,10 @@ std::array<Eigen::Vector2d, 2> phaseTwoBalls(const FieldDimensions& field, std::
 // Throws nao::Error(source, ...) naming the ball when one lies outside the field or on a line.
 void checkBalls(const FieldDimensions& field, const std::array<Eigen::Vector2d, 2>& balls, const std::string& source);
 
+// What the referee hears in "The ball is at: x y" (whole millimetres, as the rules' sentence);
+// anything else (a missing number, a decimal point, trailing words) is no valid report.
+std::optional<Eigen::Vector2d> parseBallSentence(const std::string& text);
+
 // The referee's rounding: errors to 0.1 m, times to 5 s.
 double roundTo(double value, double step);
 

@@ -4,3 +4,4 @@
 # about a minute of wall time each; under the sanitizers several).
 nao_add_test(calibration_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibration_test.cpp LIBS nao_perception nao_controllers)
 nao_add_test(calibration_sim_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibration_sim_test.cpp LIBS nao_scenarios TIMEOUT 2400)
+nao_add_test(calibration_log_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibration_log_test.cpp LIBS nao_controllers)

@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -141,8 +142,9 @@ TEST(CalibrateCommand, EstimatesPicturesStoreAndSameSeedSameResult) {
   std::filesystem::create_directories(dir);
   const std::string images = (dir / "images").string(), store = (dir / "store").string();
   const std::string common = "calibrate --seed 3 --miscalibration 2.5,-2,-2.5,2.8,2,-2.5";
+  const std::string log = (dir / "views.calog").string();
   const CommandResult r = runCommand(common + " --compare --images " + images + " --save --store " + store +
-                                     " --json " + (dir / "a.json").string());
+                                     " --record " + log + " --json " + (dir / "a.json").string());
   ASSERT_EQ(r.code, 0) << r.out;
   const nlohmann::json a = readJson((dir / "a.json").string());
   EXPECT_TRUE(a["converged"].get<bool>());
@@ -187,13 +189,52 @@ TEST(CalibrateCommand, EstimatesPicturesStoreAndSameSeedSameResult) {
   EXPECT_LE(topBefore, topAfter - 0.3);
   EXPECT_LE(bottomBefore, bottomAfter - 0.3);
 
+  // The recorded views through the robot program's Calibrator again, without a simulator: the
+  // same verdicts and the live solution.
+  const std::string head = a["head_id"].get<std::string>();
+  const CommandResult b = runCommand("calibrate --from-log " + log + " --head-id " + head + " --json " + (dir / "b.json").string());
+  ASSERT_EQ(b.code, 0) << b.out;
+  const nlohmann::json fromLog = readJson((dir / "b.json").string());
+  EXPECT_EQ(fromLog["head_id"], head);
+  EXPECT_EQ(fromLog["records"].get<int>(), static_cast<int>(a["views"].size()));
+  EXPECT_EQ(fromLog["verdicts_as_live"], fromLog["records"]);
+  EXPECT_TRUE(fromLog["accepted"].get<bool>());
+  for (const char* name : CameraCalibration::kNames)
+    EXPECT_NEAR(fromLog["estimated_deg"][name].get<double>(), a["estimated_deg"][name].get<double>(), 1e-9) << name;
+
+  // A log cut short, and another robot's log: one line naming the file, exit 2, nothing written.
+  std::string bytes;
+  {
+    std::ifstream in(log, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string cut = (dir / "cut.calog").string();
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() * 2 / 3);
+  const std::string out = (dir / "c.json").string();
+  for (const std::string& args : {"calibrate --from-log " + cut + " --json " + out,
+                                  "calibrate --from-log " + log + " --head-id another-head --save --store " + store + " --json " + out}) {
+    const CommandResult bad = runCommand(args);
+    EXPECT_EQ(bad.code, 2) << args << ": " << bad.out;
+    EXPECT_EQ(std::count(bad.out.begin(), bad.out.end(), '\n'), 1) << bad.out;
+    EXPECT_FALSE(std::filesystem::exists(out)) << args;
+    if (args.find("cut") != std::string::npos) {
+      EXPECT_NE(bad.out.find(cut + ": record "), std::string::npos) << bad.out;
+      EXPECT_NE(bad.out.find("truncated"), std::string::npos) << bad.out;
+    } else {
+      EXPECT_NE(bad.out.find("recorded by head '" + head + "', not by 'another-head'"), std::string::npos) << bad.out;
+    }
+  }
+  EXPECT_FALSE(st.load("another-head").has_value());
+
   // (Same seed, same result: challenge_sim_test runs the whole challenge twice.)
   std::filesystem::remove_all(dir);
 }
 
 TEST(CalibrateCommand, BadOptionsGiveOneLine) {
   for (const char* args : {"calibrate --solver newton", "calibrate --placement-error 0,0,0", "calibrate --lines hough",
-                           "calibrate --miscalibration 1,2,3"}) {
+                           "calibrate --miscalibration 1,2,3", "calibrate --from-log /nonexistent/views.calog",
+                           "calibrate --from-log /dev/null --lighting dark", "calibrate --head-id sim-r0-head",
+                           "calibrate --from-log /dev/null", "calibration-challenge --skip-calibration --record /tmp/x.calog"}) {
     const CommandResult r = runCommand(args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << ": " << r.out;

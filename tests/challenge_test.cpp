@@ -11,6 +11,7 @@
 #include <random>
 
 #include "controllers/StandController.h"
+#include "controllers/behavior/CalibrateCameras.h"
 #include "controllers/behavior/ChallengeTasks.h"
 #include "controllers/modules/FieldBallLocator.h"
 #include "perception/calibration/CalibrationViews.h"
@@ -132,6 +133,59 @@ TEST(ChallengeTasks, WalksGoRoundKnownBallsInsideTheField) {
   EXPECT_LT(behavior::ChallengeTasks::detour(Eigen::Vector2d(-4, 0), Eigen::Vector2d(4, 0), balls, field, p).x(), 0);
 }
 
+// Phase 1's first decision: which side line the robot starts on. The own goal box seen to the
+// right means the left side line, whatever the (uncalibrated) localization believes; without a
+// sighting the localization decides after sideTimeout.
+TEST(CalibrateCameras, TheGoalBoxInViewDecidesTheStartSide) {
+  const BallModel ball;
+  const GameState game;
+  const FallState fall;
+  const MotionInfo motion;
+  const BehaviorCommand command;
+  const CalibrationStatus status;
+  const CameraCalibration current;
+  auto decide = [&](std::optional<double> boxLateral, double believedY, double seconds) {
+    behavior::CalibrateCameras c(standardField(), StandController::standPosture(), {});
+    c.restart(0);
+    RobotPose pose;
+    pose.valid = true;
+    pose.pose = Pose2(-3.2, believedY, believedY > 0 ? -M_PI / 2 : M_PI / 2);
+    CameraPercepts p;
+    p.processed = true;
+    if (boxLateral) {
+      // The short line 2 m ahead, square to the view; the long lines run away from it.
+      auto line = [&](double x0, double y0, double x1, double y1) {
+        LinesPercept::Line l;
+        l.imageFrom = l.imageTo = Eigen::Vector2d::Zero();
+        l.from = Eigen::Vector2d(x0, y0);
+        l.to = Eigen::Vector2d(x1, y1);
+        p.lines.push_back(l);
+      };
+      line(2.0, *boxLateral - 0.3, 2.0, *boxLateral + 0.3);
+      line(2.0, *boxLateral - 0.3, 3.0, *boxLateral - 0.3);
+      line(2.0, *boxLateral + 0.3, 3.0, *boxLateral + 0.3);
+      p.goalBoxSide = {true, 0, 1, 2};
+    }
+    behavior::CalibrateCameras::Output out;
+    for (double t = 0; t <= seconds; t += 1.0 / 30) {
+      p.timestamp = t;
+      const behavior::BehaviorInput in{t, pose, ball, game, fall, motion, command};
+      out = c.run(in, status, current, p);
+      if (c.state() != behavior::CalibrateCameras::State::Localize) break;
+    }
+    return std::make_pair(c.summary().side, c.summary().sideFrom);
+  };
+  // The box to the right: the left side line, though the localization holds the mirror.
+  EXPECT_EQ(decide(-0.9, -3.0, 2.0), std::make_pair(1, std::string("goal box")));
+  EXPECT_EQ(decide(0.9, 3.0, 2.0), std::make_pair(-1, std::string("goal box")));
+  // Nothing seen: nothing decided before the timeout, the localization after it.
+  EXPECT_EQ(decide(std::nullopt, 3.0, 3.0).first, 0);
+  EXPECT_EQ(decide(std::nullopt, 3.0, 5.0), std::make_pair(1, std::string("localization")));
+  EXPECT_EQ(decide(std::nullopt, -3.0, 5.0), std::make_pair(-1, std::string("localization")));
+  // A box straight ahead says nothing.
+  EXPECT_EQ(decide(0.0, -3.0, 5.0), std::make_pair(-1, std::string("localization")));
+}
+
 TEST(ChallengeTasks, TheBallSentenceInMillimetres) {
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(1.2345, -0.0004)), "The ball is at: 1235 0");
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(-0.12, 2.7)), "The ball is at: -120 2700");
@@ -140,6 +194,14 @@ TEST(ChallengeTasks, TheBallSentenceInMillimetres) {
   EXPECT_EQ(tasks.spot(T::WalkOwnGoal).x, -4.5);
   EXPECT_EQ(tasks.spot(T::WalkCenter).x, 0);
   EXPECT_EQ(tasks.spot(T::WalkOpponentGoal).x, 4.5);
+  // The referee reads what the robot says back into metres, and nothing else.
+  const auto heard = sim::parseBallSentence(behavior::ballReport(Eigen::Vector2d(-0.12, 2.7)));
+  ASSERT_TRUE(heard);
+  EXPECT_NEAR(heard->x(), -0.12, 1e-12);
+  EXPECT_NEAR(heard->y(), 2.7, 1e-12);
+  for (const char* bad : {"The ball is at: 12", "The ball is at: 1.5 2", "The ball is at: 1 2 3", "The ball is at: - 2",
+                          "the ball is at: 1 2", "The ball is at: 1  2", "The ball is at: 1 2 ", "The ball is at: 9999999999 1"})
+    EXPECT_FALSE(sim::parseBallSentence(bad)) << bad;
 }
 
 TEST(ChallengeBalls, DrawnClearOfLinesSpotsAndTheStart) {

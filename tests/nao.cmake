@@ -26,7 +26,7 @@ nao_warnings(sim_lola_peer)
 # run --backend nao with the full cognition: lola_peer's soak with --cameras files:DIR, frames
 # rendered by `nao-soccer render` in the test, every answer judged; alone, as lola_peer_test.
 add_executable(nao_cognition_test nao_cognition_test.cpp)
-target_link_libraries(nao_cognition_test PRIVATE nlohmann_json::nlohmann_json GTest::gtest GTest::gtest_main)
+target_link_libraries(nao_cognition_test PRIVATE nao_perception nlohmann_json::nlohmann_json GTest::gtest GTest::gtest_main)
 target_include_directories(nao_cognition_test PRIVATE ${CMAKE_SOURCE_DIR})
 target_compile_definitions(nao_cognition_test PRIVATE NAO_BINARY="$<TARGET_FILE:nao-soccer>"
                                                        LOLA_PEER="$<TARGET_FILE:lola_peer>"
@@ -73,9 +73,12 @@ if(NAO_FUZZ)
   find_package(CLI11 REQUIRED CONFIG)
   target_link_libraries(argv_fuzz PRIVATE CLI11::CLI11 nlohmann_json::nlohmann_json)
   target_compile_definitions(argv_fuzz PRIVATE NAO_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
+  nao_fuzz_target(calibration_log_fuzz fuzz/calibration_log_fuzz.cpp ${CMAKE_SOURCE_DIR}/perception/calibration/CalibrationLog.cpp)
+  target_link_libraries(calibration_log_fuzz PRIVATE nlohmann_json::nlohmann_json)
   # Seed inputs (a valid packet of each kind and a few damaged ones), written at run time.
-  add_executable(fuzz_seeds fuzz/fuzz_seeds.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp)
+  add_executable(fuzz_seeds fuzz/fuzz_seeds.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp
+                 ${CMAKE_SOURCE_DIR}/perception/calibration/CalibrationLog.cpp)
   target_include_directories(fuzz_seeds PRIVATE ${CMAKE_SOURCE_DIR})
   target_compile_definitions(fuzz_seeds PRIVATE MSGPACK_NO_BOOST)
-  target_link_libraries(fuzz_seeds PRIVATE Eigen3::Eigen ${NAO_MSGPACK_TARGET})
+  target_link_libraries(fuzz_seeds PRIVATE Eigen3::Eigen ${NAO_MSGPACK_TARGET} nlohmann_json::nlohmann_json)
 endif()

@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "perception/calibration/CalibrationLog.h"
 #include "tests/support/RunCommand.h"
 
 namespace nao {
@@ -61,10 +62,10 @@ TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
 
   // LoLA time: 30 s (10 s in the sanitizer run); then SIGTERM, and the program writes its JSON.
   const int seconds = quick() ? 10 : 30;
-  const fs::path runJson = dir / "run.json", peerJson = dir / "peer.json";
+  const fs::path runJson = dir / "run.json", peerJson = dir / "peer.json", log = dir / "views.calog";
   const std::string cmd = std::string(LOLA_PEER) + " --nao-soccer " + NAO_BINARY + " --soak " + std::to_string(seconds) +
                           " --cameras files:" + (dir / "frames").string() + " --arg --json --arg " + runJson.string() +
-                          " --json " + peerJson.string() + " 2>&1";
+                          " --arg --record --arg " + log.string() + " --json " + peerJson.string() + " 2>&1";
   const auto [status, out] = shell(cmd);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
 
@@ -99,6 +100,15 @@ TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
               run["cpu_ms_per_cycle"].dump().c_str());
   // The program was built for the head LoLA named (its per-robot parameters and calibration).
   EXPECT_EQ(run["robot"]["head_id"], "P0000073A07S8AF00027");
+  // --record: the calibration log, under that head, written when the run ended; no calibration
+  // ran, so it holds no view, and calibrate --from-log says so.
+  const calibration::CalibrationLog calibrationLog = calibration::readCalibrationLog(log.string());
+  EXPECT_EQ(calibrationLog.headId, "P0000073A07S8AF00027");
+  EXPECT_EQ(calibrationLog.backend, "nao");
+  EXPECT_TRUE(calibrationLog.records.empty());
+  const auto fromLog = test::runCommand("calibrate --from-log " + log.string());
+  EXPECT_EQ(fromLog.code, 2) << fromLog.out;
+  EXPECT_NE(fromLog.out.find("holds no views"), std::string::npos) << fromLog.out;
   if (!HasFailure()) fs::remove_all(dir);
 }
 

@@ -175,6 +175,9 @@ void CommandLine::declare() {
              return s.find_first_not_of(" \t") == std::string::npos ? std::string("an empty command ('none' for none)")
                                                                       : std::string();
            });
+    c.outputFile("--record", n.record,
+                  "nao: write the calibration log when the run ends: each image the Calibrator judged, with its joints "
+                  "and IMU angle (calibrate --from-log solves from it)");
     c.count("--team", n.team, 0, 254, "nao: team number for the GameController (0: none)");
     c.count("--player", n.player, 1, gc::kMaxPlayers, "nao: player number");
     c.count("--gc-port", n.gcPort, 1, 65535, "nao: GameController UDP port");
@@ -185,7 +188,7 @@ void CommandLine::declare() {
                {"--seed", "--lighting", "--miscalibration", "--model", "--pose", "--images", "--ball"});
     c.onlyWith("--backend", "nao", r.backend,
                {"--lola-socket", "--camera-top", "--camera-bottom", "--camera-settings", "--team", "--player",
-                "--gc-port", "--gc-return-port", "--gc-address", "--lockstep", "--speech-command"});
+                "--gc-port", "--gc-return-port", "--gc-address", "--lockstep", "--speech-command", "--record"});
     c.rule([&r] {
       const bool simValue = r.cameras == "on" || r.cameras == "off";
       if (!r.cameras.empty() && simValue != (r.backend == "sim"))
@@ -409,6 +412,10 @@ void CommandLine::declare() {
     c.flag("--skip-calibration", k.skipCalibration, "no phase 1: phase 2 with the factory calibration (the fast, imprecise baseline)");
     c.text("--venue", k.venue, "NAME", kVenueHelp, venueProblem);
     c.number("--max-offset", k.maxOffset, 0, 6, "deg", "--miscalibration random: offsets uniform in +-this per parameter");
+    c.outputFile("--record", k.record, "write phase 1's calibration log (calibrate --from-log solves from it)");
+    c.rule([&k] {
+      return k.skipCalibration && !k.record.empty() ? std::string("--record: --skip-calibration has no phase 1 to record") : std::string();
+    });
     c.outputFolder("--images", k.images, "write the calibration's views, the before/after pictures and a top-down picture of the run");
     debugOptions(c, k.debug);
   }
@@ -431,6 +438,16 @@ void CommandLine::declare() {
     c.choice("--lines", k.lines, {"lsd", "vision"}, "image line segments from OpenCV's LSD or the vision pipeline first");
     c.choice("--start", k.start, {"left", "right"}, "the side line the robot starts on");
     c.outputFolder("--images", k.images, "write every view annotated and the before/after pictures (paper Fig. 2)");
+    c.outputFile("--record", k.record, "write the calibration log: every image the robot's Calibrator judged, with its joints and IMU angle");
+    auto* fromLog = c.inputFile("--from-log", k.fromLog,
+                                "no simulator: the robot program's Calibrator solves from a recorded calibration log (--record; run --backend nao --record)");
+    c.text("--head-id", k.headId, "ID", "--from-log: the robot being calibrated; a log another head recorded is refused")->needs(fromLog);
+    c.rule([&k] {
+      if (k.fromLog.empty()) return std::string();
+      for (const char* flag : {"--lighting", "--miscalibration", "--model", "--start", "--images", "--record", "--seed"})
+        if (k.common.has(flag)) return std::string("--from-log: ") + flag + " is for the simulator, which a log replaces";
+      return std::string();
+    });
     debugOptions(c, k.debug);
     auto* save = c.flag("--save", k.save, "store an accepted result for this robot's head id (refused above the residual threshold)");
     c.outputFolder("--store", k.store, "calibration folder for --save (default config/calibration)")->needs(save);

@@ -37,6 +37,7 @@ struct NaoRunOptions {
   std::string clock = "monotonic";  // or "lola": 12 ms per LoLA packet
   bool lockstep = false;            // one packet at a time, deterministic (--lockstep)
   std::string speechCommand = "flite -t";  // the text-to-speech command, the text appended ("none": log only)
+  std::string record;               // the calibration log, written when the run ends (--record)
 };
 
 struct RunOptions {
@@ -157,6 +158,7 @@ struct CalibrateOptions {
   SimOptions sim;
   DebugOptions debug;
   std::string solver = "gauss-newton", lines = "lsd", start = "right", images, store;
+  std::string record, fromLog, headId;
   bool compare = false, save = false;
 };
 
@@ -164,7 +166,7 @@ struct ChallengeCommandOptions {
   CommonOptions common;
   SimOptions sim{"default", "random", {}, ""};
   DebugOptions debug;
-  std::string start = "seed", images, venue = "none";
+  std::string start = "seed", images, venue = "none", record;
   bool randomize = false, skipCalibration = false;
   double timeLimit = 600, maxOffset = 3;
 };

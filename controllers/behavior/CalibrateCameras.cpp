@@ -19,12 +19,36 @@ void CalibrateCameras::restart(double time) {
   current_ = 0;
   round_ = 0;
   summary_ = {};
+  sideVotes_ = {};
+  lastVoteImage_ = -1;
 }
 
-void CalibrateCameras::planFrom(const RobotPose& pose) {
-  // The start is on one of the side lines: the estimate's y says which; the own goal box's side
-  // there is the one to look at.
-  const int sideSign = pose.pose.y >= 0 ? 1 : -1;
+int CalibrateCameras::decideSide(const BehaviorInput& in, const CameraPercepts& percepts) {
+  // A goal box side in view: its short line's middle to the right means the left side line.
+  if (percepts.processed && percepts.timestamp != lastVoteImage_ && percepts.goalBoxSide.found) {
+    lastVoteImage_ = percepts.timestamp;
+    const int s = percepts.goalBoxSide.shortLine;
+    if (s >= 0 && s < static_cast<int>(percepts.lines.size())) {
+      const Eigen::Vector2d middle = (percepts.lines[s].from + percepts.lines[s].to) / 2;
+      if (middle.x() > 0.3 && middle.norm() < 5.0 && std::abs(middle.y()) > 0.2) ++sideVotes_[middle.y() < 0 ? 0 : 1];
+    }
+  }
+  const double waited = machine_.timeIn(in.time);
+  if (waited < params_.settleTime) return 0;
+  const int votes = sideVotes_[0] + sideVotes_[1];
+  if (votes >= params_.sideVotes) {
+    summary_.sideFrom = "goal box";
+    if (sideVotes_[0] >= params_.sideShare * votes) return 1;
+    if (sideVotes_[1] >= params_.sideShare * votes) return -1;
+  }
+  summary_.sideFrom = "localization";
+  if (waited >= params_.sideTimeout && in.pose.valid) return in.pose.pose.y >= 0 ? 1 : -1;
+  return 0;
+}
+
+void CalibrateCameras::planFrom(int sideSign, const RobotPose& pose) {
+  // The own goal box's side on the start's side line is the one to look at.
+  summary_.side = sideSign;
   side_ = calibration::ownGoalBoxSide(field_, sideSign);
   position_ = calibration::calibrationPosition(side_);
   // The rules' start is known: the odometry from it beats the uncalibrated localization (whose
@@ -178,14 +202,23 @@ CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const Ca
     out.head.pitch = p.view.headPitch;
   };
   switch (machine_.state) {
-    case State::Localize:
+    case State::Localize: {
       stand();
-      if (in.pose.valid && machine_.timeIn(t) >= params_.settleTime) {
-        planFrom(in.pose);
+      // First ahead, where a goal box side is in view from either start; then the usual look
+      // around, which the localization needs (a fixed view of the box alone misleads it).
+      if (machine_.timeIn(t) < params_.sideTimeout) {
+        out.lookActive = false;
+        out.head.mode = HeadMotionRequest::Mode::Angles;
+        out.head.yaw = 0;
+        out.head.pitch = params_.sideLookPitch;
+      }
+      if (const int sideSign = decideSide(in, percepts)) {
+        planFrom(sideSign, in.pose);
         ++walkId_;
         machine_.go(State::GoToPosition, t);
       }
       break;
+    }
     case State::GoToPosition: {
       // On odometry from the start to the calibration position.
       out.motion.motion = MotionType::WalkTo;

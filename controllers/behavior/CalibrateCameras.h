@@ -1,7 +1,10 @@
 #pragma once
 // Option: the Autonomous Calibration Challenge's phase 1 (../shared/reference/calibration-challenge.md,
-// B-Human 2021 section 3). From the start on a side line it localizes (the start's two poses:
-// which side line), walks on odometry from that known start to the side of its own goal box on
+// B-Human 2021 section 3). From the start on a side line it finds which side line it stands on
+// (the own goal box is to the right from the left one and to the left from the right one: that
+// bearing does not depend on the uncalibrated camera's pitch, whose distorted distances once
+// made the localization pick the mirrored start; the localization decides only when the box is
+// not seen), walks on odometry from that known start to the side of its own goal box on
 // that side (calibrationPosition; the uncalibrated localization's distances are what the camera
 // offsets distort, and its validity flickers: it walked a robot off the field), then aligns itself
 // with the box's short line as the top camera sees it (the line's bearing and direction do not
@@ -13,6 +16,7 @@
 // "Calibration finished" with an arm up. A solution that is not accepted gets another round of
 // the rejected views at pans shifted by retakePanDeg; after maxRounds the robot reports anyway
 // with the offsets it has (finishing beats being stopped at 10 min).
+#include <array>
 #include <string>
 #include <vector>
 
@@ -32,7 +36,11 @@ namespace nao::behavior {
 class CalibrateCameras {
  public:
   struct Params {
-    double settleTime = 1.0;       // s standing after the start before trusting the localization
+    double settleTime = 1.0;       // s standing after the start before deciding the side
+    double sideLookPitch = 0.2;    // rad: the head's pitch meanwhile (yaw 0: the box ahead to one side)
+    int sideVotes = 4;             // goal box sightings that decide the side ...
+    double sideShare = 0.8;        // ... when at least this share of them agree
+    double sideTimeout = 4.0;      // s looking ahead; then the head looks around and the localization decides
     double turnSettle = 0.4;       // s after a turn's target is sent before its arrival counts
     double collectTimeout = 2.5;   // s per view, then the view counts as rejected
     double solveTimeout = 5.0;     // s for the calibrator to answer a solve, apply or verify
@@ -60,6 +68,8 @@ class CalibrateCameras {
   // The result, for the log and the referee's pictures.
   struct Summary {
     int views = 0, accepted = 0, rounds = 0, alignSteps = 0;
+    int side = 0;  // +1 left side line, -1 right
+    std::string sideFrom;  // "goal box" or "localization"
     bool aligned = false;  // the short line was seen square ahead before the views
     bool applied = false;
     double verifyAngleDeg = -1;
@@ -84,7 +94,9 @@ class CalibrateCameras {
     int viewId = 0;
     bool taken = false;  // a sample was accepted
   };
-  void planFrom(const RobotPose& pose);
+  void planFrom(int sideSign, const RobotPose& pose);
+  // +1 (left side line), -1 (right) or 0 (not yet) from the goal box sightings and the pose.
+  int decideSide(const BehaviorInput& in, const CameraPercepts& percepts);
   void nextView(double time, Output& out);
   void startRound(double time, Output& out);
   // The odometry target that turns the body in place to a field heading.
@@ -118,12 +130,18 @@ class CalibrateCameras {
   bool alignWalking_ = false;
   Pose2 alignTarget_;  // odometry frame
   double alignPitch_ = 0;  // rad: the head pitch of the plan's straight top view
+  std::array<int, 2> sideVotes_{};  // goal box sightings to the right (left start), to the left
+  double lastVoteImage_ = -1;
   Summary summary_;
 };
 
 template <class V>
 void describe(V& v, CalibrateCameras::Params& p) {
   v("settleTime", p.settleTime, 0.0, 30.0);
+  v("sideLookPitch", p.sideLookPitch, -0.6, 0.5);
+  v("sideVotes", p.sideVotes, 1, 1000);
+  v("sideShare", p.sideShare, 0.5, 1.0);
+  v("sideTimeout", p.sideTimeout, 0.0, 120.0);
   v("turnSettle", p.turnSettle, 0.0, 5.0);
   v("collectTimeout", p.collectTimeout, 0.1, 30.0);
   v("solveTimeout", p.solveTimeout, 0.1, 60.0);

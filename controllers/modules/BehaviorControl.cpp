@@ -140,6 +140,8 @@ void BehaviorControl::update() {
                           {"calibrate", calibrating ? calibrateStateName(calibrate_->state()) : "none"},
                           {"tasks", evaluating ? tasksStateName(tasks_->state()) : "none"},
                           {"task", evaluating ? tasks_->summary().task : -1},
+                          {"calibration_side", calibrating ? calibrate_->summary().side : 0},
+                          {"calibration_side_from", calibrating ? calibrate_->summary().sideFrom : ""},
                           {"calibration_request", calibrationActionName(calibration.action)},
                           {"speech", {{"id", speech.id}, {"text", speech.text}}}};
   });

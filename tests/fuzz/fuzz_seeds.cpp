@@ -1,6 +1,6 @@
 // Writes seed inputs for the fuzz targets: a valid LoLA sensor packet (built with msgpack as
 // LoLA sends it) and damaged variants, valid GameController and return packets.
-// usage: fuzz_seeds DIR   (writes DIR/lola/* and DIR/gamecontroller/*)
+// usage: fuzz_seeds DIR   (writes DIR/lola/*, DIR/gamecontroller/* and DIR/calibration_log/*)
 #include <sys/stat.h>
 
 #include <cstdio>
@@ -10,6 +10,7 @@
 
 #include <msgpack.hpp>
 
+#include "perception/calibration/CalibrationLog.h"
 #include "robot/nao/GameController.h"
 
 namespace {
@@ -60,5 +61,22 @@ int main(int argc, char** argv) {
   r.teamNum = 12;
   const auto q = nao::gc::serialize(r);
   write(dir + "/gamecontroller/return4", std::string(q.begin(), q.end()));
+  // A calibration log of two small views.
+  ::mkdir((dir + "/calibration_log").c_str(), 0755);
+  nao::calibration::CalibrationLog log;
+  log.headId = "P0000074A04S8C700011";
+  log.backend = "nao";
+  for (int v = 1; v <= 2; ++v) {
+    nao::calibration::CalibrationLogRecord rec;
+    rec.viewId = v;
+    rec.image.camera = v == 1 ? nao::CameraId::Top : nao::CameraId::Bottom;
+    rec.image.width = 4;
+    rec.image.height = 2;
+    rec.image.timestamp = 3.5 * v;
+    rec.image.yuyv.assign(16, static_cast<std::uint8_t>(40 * v));
+    rec.accepted = v == 1;
+    log.records.push_back(rec);
+  }
+  write(dir + "/calibration_log/two_views", nao::calibration::serializeCalibrationLog(log));
   return 0;
 }
