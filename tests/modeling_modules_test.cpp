@@ -289,7 +289,12 @@ TEST(BehaviorControlModule, CalibratesViewByViewFromTheStart) {
   pose.odometry = pose.pose;  // the odometry frame is the field frame here
   CalibrationStatus status;
   MotionInfo walking;
-  for (int i = 0; i < 45; ++i) step(pose, walking, status);  // 1.5 s: localized, settled
+  // No goal box side in view (no percepts here): the robot looks ahead, standing, until the
+  // side timeout; then the localization decides the start side.
+  for (int i = 0; i < 45; ++i) step(pose, walking, status);  // 1.5 s
+  EXPECT_EQ(f.h.get<MotionRequest>().motion, MotionType::Stand);
+  EXPECT_EQ(f.h.get<HeadMotionRequest>().yaw, 0.0);
+  for (int i = 0; i < 100; ++i) step(pose, walking, status);  // 4.8 s
   const MotionRequest& walk = f.h.get<MotionRequest>();
   ASSERT_EQ(walk.motion, MotionType::WalkTo);
   const Eigen::Vector3d target = calibration::calibrationPosition(calibration::ownGoalBoxSide(dims, -1));

@@ -67,7 +67,8 @@ BehaviorControl::BehaviorControl(const ModuleContext& context)
       report_(params_.report),
       calibrate_(std::make_unique<behavior::CalibrateCameras>(fieldFor(context), StandController::standPosture(),
                                                               params_.calibrate)),
-      tasks_(std::make_unique<behavior::ChallengeTasks>(fieldFor(context), params_.tasks)) {}
+      tasks_(std::make_unique<behavior::ChallengeTasks>(fieldFor(context), params_.tasks)),
+      striker_(std::make_unique<behavior::Striker>(fieldFor(context), params_.striker)) {}
 
 void BehaviorControl::update() {
   const FrameHistory& history = in<FrameHistory>();
@@ -95,6 +96,8 @@ void BehaviorControl::update() {
   }
   const bool calibrating = challenge.mode == ChallengeMode::Mode::Calibration;
   const bool evaluating = challenge.mode == ChallengeMode::Mode::Evaluation;
+  // A game: the GameController decides (a commanded walk, e.g. a test's, comes first).
+  const bool playing = !calibrating && !evaluating && input.game.fromGameController && !input.command.goTo;
   if (calibrating) {
     behavior::CalibrateCameras::Output c =
         calibrate_->run(input, in<Previous<CalibrationStatus>>(), in<CameraCalibration>(), in<CameraPercepts>());
@@ -109,6 +112,9 @@ void BehaviorControl::update() {
     if (c.lookActive) look_->run(input, head);
     else head = c.head;
     if (!c.report.empty()) report_.start(c.report, input.time);
+  } else if (playing) {
+    striker_->run(input, motion);
+    look_->run(input, head);
   } else {
     if (input.command.goTo) goTo_.run(input, *input.command.goTo, motion);
     else motion = MotionRequest{};  // stand
@@ -117,7 +123,7 @@ void BehaviorControl::update() {
   // Each option counts its own walk targets, and the motion engine takes a target when the id
   // changes: a new (option, id) pair gets a new id here, so that one option's id never repeats
   // another's last one.
-  const int walkSource = calibrating ? 1 : evaluating ? 2 : 0;
+  const int walkSource = calibrating ? 1 : evaluating ? 2 : playing ? 3 : 0;
   if (motion.motion == MotionType::WalkTo) {
     if (walkSource != walkSource_ || motion.walkTargetId != walkOptionId_) {
       walkSource_ = walkSource;
@@ -140,6 +146,8 @@ void BehaviorControl::update() {
                           {"calibrate", calibrating ? calibrateStateName(calibrate_->state()) : "none"},
                           {"tasks", evaluating ? tasksStateName(tasks_->state()) : "none"},
                           {"task", evaluating ? tasks_->summary().task : -1},
+                          {"striker", playing ? behavior::strikerStateName(striker_->state()) : "none"},
+                          {"kick_choice", playing ? behavior::kickKindName(striker_->lastChoice().kind) : "none"},
                           {"calibration_side", calibrating ? calibrate_->summary().side : 0},
                           {"calibration_side_from", calibrating ? calibrate_->summary().sideFrom : ""},
                           {"calibration_request", calibrationActionName(calibration.action)},

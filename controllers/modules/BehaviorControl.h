@@ -6,7 +6,8 @@
 // starts a challenge mode (ChallengeMode), the robot says so; in the calibration mode it
 // calibrates its cameras (CalibrateCameras, talking to the Calibrator through
 // CalibrationRequest and the status the Calibrator left in the last run); in the evaluation
-// mode it does the five tasks (ChallengeTasks: the balls of FieldBalls, the walks).
+// mode it does the five tasks (ChallengeTasks: the balls of FieldBalls, the walks). While a
+// GameController runs a game (GameState::fromGameController) it plays (Striker).
 #include <memory>
 
 #include "controllers/behavior/CalibrateCameras.h"
@@ -14,6 +15,7 @@
 #include "controllers/behavior/GoToPose.h"
 #include "controllers/behavior/LookActive.h"
 #include "controllers/behavior/Report.h"
+#include "controllers/behavior/Striker.h"
 #include "representations/behavior/ArmMotionRequest.h"
 #include "representations/behavior/BehaviorCommand.h"
 #include "representations/behavior/CalibrationRequest.h"
@@ -50,6 +52,7 @@ class BehaviorControl
     behavior::Report::Params report;
     behavior::CalibrateCameras::Params calibrate;
     behavior::ChallengeTasks::Params tasks;
+    behavior::Striker::Params striker;
     bool acknowledgeModes = true;  // say "Calibration mode" / "Evaluation mode" when the referee starts one
   };
 
@@ -59,6 +62,7 @@ class BehaviorControl
   const behavior::Report& report() const { return report_; }
   const behavior::CalibrateCameras& calibrate() const { return *calibrate_; }
   const behavior::ChallengeTasks& tasks() const { return *tasks_; }
+  const behavior::Striker& striker() const { return *striker_; }
 
  private:
   void update() override;
@@ -69,6 +73,7 @@ class BehaviorControl
   behavior::Report report_;
   std::unique_ptr<behavior::CalibrateCameras> calibrate_;
   std::unique_ptr<behavior::ChallengeTasks> tasks_;
+  std::unique_ptr<behavior::Striker> striker_;
   int modeId_ = 0;  // the last ChallengeMode start acknowledged
   int walkSource_ = -1, walkOptionId_ = 0, walkId_ = 0;  // the walk target ids sent (see update)
 };
@@ -83,6 +88,7 @@ void describe(V& v, modules::BehaviorControl::Params& p) {
   v("report", p.report);
   v("calibrate", p.calibrate);
   v("tasks", p.tasks);
+  v("striker", p.striker);
   v("acknowledgeModes", p.acknowledgeModes);
 }
 }  // namespace nao

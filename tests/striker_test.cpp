@@ -1,0 +1,122 @@
+// The 1vs1 striker option (controllers/behavior/Striker.h) on scripted inputs: what it asks of
+// the body in each game state, where it walks to kick, when it kicks, and that it keeps off the
+// halfway line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "controllers/behavior/Striker.h"
+
+namespace {
+
+using nao::MotionType;
+using nao::Pose2;
+using nao::behavior::Striker;
+
+struct Inputs {
+  nao::RobotPose pose;
+  nao::BallModel ball;
+  nao::GameState game;
+  nao::FallState fall;
+  nao::MotionInfo motion;
+  nao::BehaviorCommand command;
+  double time = 10;
+
+  Inputs() {
+    game.fromGameController = true;
+    game.state = nao::gc::State::Playing;
+    pose.valid = true;
+  }
+  nao::behavior::BehaviorInput in() const { return {time, pose, ball, game, fall, motion, command}; }
+  // The robot at `robot` (field) and a ball seen now at `field` (field).
+  void place(const Pose2& robot, const Eigen::Vector2d& field) {
+    pose.pose = robot;
+    pose.odometry = robot;  // the odometry frame equal to the field frame
+    ball.valid = ball.fieldValid = true;
+    ball.seenTime = time;
+    ball.fieldPosition = field;
+    ball.position = robot.inverse() * field;
+  }
+};
+
+TEST(Striker, StandsWithoutAGameControllerOrWhenPenalisedAndPositionsInReady) {
+  Striker s(nao::FieldDimensions{}, {});
+  Inputs i;
+  i.place(Pose2(-2, 0, 0), {-1, 0});
+  nao::MotionRequest m;
+  i.game.fromGameController = false;
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Stand);
+  EXPECT_EQ(m.motion, MotionType::Stand);
+  i.game.fromGameController = true;
+  i.game.penalty = nao::gc::Penalty::InactivePlayer;
+  s.run(i.in(), m);
+  EXPECT_EQ(m.motion, MotionType::Stand);
+  i.game.penalty = nao::gc::Penalty::None;
+  i.game.state = nao::gc::State::Set;
+  s.run(i.in(), m);
+  EXPECT_EQ(m.motion, MotionType::Stand);
+  i.game.state = nao::gc::State::Ready;
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Position);
+  ASSERT_EQ(m.motion, MotionType::WalkTo);
+  EXPECT_NEAR(m.walkTarget.x, -1.0, 1e-9);  // the ready pose, odometry frame = field frame here
+  EXPECT_NEAR(m.walkTarget.y, 0.0, 1e-9);
+}
+
+TEST(Striker, SearchesWithoutABallThenWalksBehindItAndKicks) {
+  Striker s(nao::FieldDimensions{}, {});
+  Inputs i;
+  nao::MotionRequest m;
+  i.pose.pose = i.pose.odometry = Pose2(-2, 0, 0);
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Search);
+  EXPECT_EQ(m.motion, MotionType::Walk);
+  EXPECT_GT(m.walkSpeed.theta, 0);
+  // The ball at (-1, 0.3): kicked straight on (it stops in the other half), so the robot goes to
+  // 0.16 m behind it with the ball in front of its left foot.
+  i.place(Pose2(-2, 0, 0), {-1, 0.3});
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Approach);
+  ASSERT_EQ(m.motion, MotionType::WalkTo);
+  EXPECT_NEAR(s.lastChoice().direction, 0, 1e-9);
+  EXPECT_NEAR(m.walkTarget.x, -1.16, 1e-9);
+  EXPECT_NEAR(m.walkTarget.y, 0.25, 1e-9);
+  // There: the kick starts once and runs until the motion says it is done.
+  i.place(Pose2(-1.16, 0.25, 0.02), {-1, 0.3});
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Kick);
+  ASSERT_EQ(m.motion, MotionType::Kick);
+  const int id = m.kickId;
+  EXPECT_NEAR(m.kickDirection, -0.02, 1e-9);
+  i.time += 0.5;
+  i.ball.position = {0.3, 0.05};  // the ball leaves the foot
+  s.run(i.in(), m);
+  EXPECT_EQ(m.motion, MotionType::Kick);
+  EXPECT_EQ(m.kickId, id);
+  i.motion.kickDone = true;
+  i.time += 0.5;
+  s.run(i.in(), m);
+  EXPECT_NE(s.state(), Striker::State::Kick);
+  EXPECT_EQ(s.kicks(), 1);
+}
+
+TEST(Striker, WaitsShortOfTheHalfwayLineWhenTheBallIsOutOfReach) {
+  Striker s(nao::FieldDimensions{}, {});
+  Inputs i;
+  nao::MotionRequest m;
+  for (const Eigen::Vector2d& ball : {Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(-0.1, 0)}) {
+    i.place(Pose2(-2, 0, 0), ball);
+    s.run(i.in(), m);
+    EXPECT_EQ(s.state(), Striker::State::Wait) << ball.transpose();
+    ASSERT_EQ(m.motion, MotionType::WalkTo);
+    EXPECT_LE(m.walkTarget.x, -0.5);
+  }
+  // A ball a little further back can be played: the kick pose stays 0.25 m short of the line.
+  i.place(Pose2(-2, 0, 0), {-0.3, 0});
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Approach);
+  EXPECT_LE(m.walkTarget.x, -0.025 - 0.25);
+}
+
+}  // namespace
