@@ -47,6 +47,7 @@ walk --to 1,0.5,90 --randomize
 kick --trials 2
 train ball --scenes 10 --hidden 8
 calibrate --solver ceres --compare --start left --placement-error 0.1,0,5 --save --store d
+match --seconds 5 --half 30 --randomize --lighting dark
 render --seed -1 --pose nan,1,2 --out
 eval bogus --trials 99999999999
 SEEDS

@@ -31,6 +31,7 @@ int trainBallCommand(const TrainBallOptions& o);
 int trainFrictionCommand(const TrainFrictionOptions& o);
 int calibrateCommand(const CalibrateOptions& o);
 int challengeCommand(const ChallengeCommandOptions& o);
+int matchCommand(const MatchOptions& o);
 int evalChallengeCommand(const EvalChallengeOptions& o);
 int modulesCommand(const ModulesOptions& o);
 

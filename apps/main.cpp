@@ -38,6 +38,7 @@ void bind(CommandLine& cl) {
   to("train friction", nao::cli::trainFrictionCommand, o.trainFriction);
   to("calibrate", nao::cli::calibrateCommand, o.calibrate);
   to("calibration-challenge", nao::cli::challengeCommand, o.challenge);
+  to("match", nao::cli::matchCommand, o.match);
   to("modules", nao::cli::modulesCommand, o.modules);
 }
 

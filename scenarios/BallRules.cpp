@@ -37,7 +37,7 @@ std::vector<BallRules::Call> BallRules::update(double t, const std::vector<Ball>
   for (std::size_t i = 0; i < balls.size(); ++i) {
     State& s = states_[i];
     const Ball& b = balls[i];
-    if (s.outOfPlay) continue;
+    if (s.outOfPlay || !b.inPlay) continue;
     for (const Touch& touch : touches) {
       if (touch.ball != static_cast<int>(i)) continue;
       if (touch.team == s.cancelled) s.cancelled = -1;

@@ -26,6 +26,7 @@ class BallRules {
   };
   struct Ball {
     Eigen::Vector2d position{0, 0}, velocity{0, 0};  // m, m/s, field frame (truth)
+    bool inPlay = true;  // false: off the field (not yet placed); not judged
   };
   struct Touch {
     int ball = 0;

@@ -420,6 +420,15 @@ void CommandLine::declare() {
     debugOptions(c, k.debug);
   }
   {
+    MatchOptions& k = o.match;
+    Command& c = leaf(root, "match", "a simulated 1vs1 game of the 2021 rules: two robot programs, the GameController's packets, the referee's calls from the simulator's truth", k.common);
+    seedJsonField(c);
+    simOptions(c, k.sim, false);
+    c.number("--seconds", k.seconds, 1, 7200, "s", "stop after this much simulated time (unless given: the whole game, both halves and any extensions)");
+    c.number("--half", k.halfSeconds, 10, 600, "s", "the length of a half (the rules' 5 min)");
+    c.flag("--randomize", k.randomize, "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0");
+  }
+  {
     ModulesOptions& m = o.modules;
     Command& c = leaf(root, "modules", "every module of the robot program: cadence, requires, provides (or a Graphviz graph)", m.common);
     c.json();

@@ -171,6 +171,14 @@ struct ChallengeCommandOptions {
   double timeLimit = 600, maxOffset = 3;
 };
 
+struct MatchOptions {
+  CommonOptions common;
+  SimOptions sim;
+  double seconds = 0;      // 0 (not given): the whole game
+  double halfSeconds = 300;
+  bool randomize = false;
+};
+
 struct ModulesOptions {
   CommonOptions common;
   bool dot = false;
@@ -195,6 +203,7 @@ struct Options {
   TrainFrictionOptions trainFriction;
   CalibrateOptions calibrate;
   ChallengeCommandOptions challenge;
+  MatchOptions match;
   ModulesOptions modules;
 };
 

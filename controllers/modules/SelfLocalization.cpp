@@ -43,8 +43,13 @@ void SelfLocalization::applySituation(const GameState& game, const ChallengeMode
   } else if (wasPenalised_ && !game.penalised()) {
     locator_.resetToPenaltyReturn();
     lastImageTime_.reset();  // the robot was carried: the odometry meanwhile means nothing
+  } else if (game.fromGameController && game.state == gc::State::Initial && lastGameState_ != gc::State::Initial) {
+    // A new half: the robot was carried to the side line of its half.
+    locator_.resetToSidelineEntry(true);
+    lastImageTime_.reset();
   }
   wasPenalised_ = game.penalised();
+  lastGameState_ = game.state;
 }
 
 void SelfLocalization::update() {

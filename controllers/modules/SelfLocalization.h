@@ -120,6 +120,7 @@ class SelfLocalization
   Pose2 lastOdometry_;
   bool started_ = false;
   bool wasPenalised_ = false;
+  gc::State lastGameState_ = gc::State::Initial;
   int challengeModeId_ = 0;  // the last challenge start, which placed the robot at its start
   long skippedImages_ = 0;    // without a usable time or odometry history
   long skippedOdometry_ = 0;  // with a non-finite odometry reading at the image's time

@@ -1,0 +1,42 @@
+#pragma once
+// A simulated 1vs1 game (../shared/reference/one-vs-one.md): two robot programs, each on its
+// own simulated NAO with its own two cameras, a GameController (GameControllerSim) whose v18
+// packets each robot's own receiver (robot/nao/GameController.h) decodes, and the referee's
+// rules (BallRules, RobotRules) judged from the simulator's truth. The referee places robots
+// and balls (the start, SET, penalties and their returns, balls out, the ball back to a
+// scorer); nothing moves a robot while it plays, and no robot program reads the truth.
+// Frames: the field frame; in the first half the home team defends the goal at negative x.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "perception/FieldDimensions.h"
+#include "sim/Lighting.h"
+
+namespace nao::sim {
+
+struct MatchOptions {
+  FieldDimensions field;
+  std::string robotModel;  // empty: models/nao_v6.xml
+  Lighting lighting;
+  std::uint64_t seed = 1;
+  bool randomize = false;     // both robots foreign (masses, joint offsets, floor friction)
+  double halfSeconds = 300;   // the rules' 5 min
+  double seconds = 0;         // > 0: stop after this much simulated time (a short game)
+  std::array<int, 2> teams{5, 6};  // home (our robot program), away
+  std::function<void(double simTime, const std::string& status)> progress;  // about every 10 simulated s
+};
+
+struct MatchResult {
+  nlohmann::json json;  // the `match` contract (docs: design.md): score, points_by_kind, events, robots, ...
+  int homeScore = 0, awayScore = 0;
+  std::string state;    // the GameController's last state
+  double simSeconds = 0, wallSeconds = 0;
+};
+
+MatchResult runMatch(const MatchOptions& options);
+
+}  // namespace nao::sim
