@@ -193,6 +193,7 @@ int calibrateCommand(const CalibrateOptions& options) {
   o.side = options.start == "left" ? 1 : -1;
   o.imagesDir = options.images;
   o.recordPath = options.record;
+  o.timeLimit = options.timeLimit;
   DebugSink debug(options.debug);
   o.debug = debug.channels();
   const std::size_t limit = static_cast<std::size_t>(o.timeLimit);
@@ -232,6 +233,7 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   o.seed = options.common.seed;
   o.lightings = lightingsFrom(options.lighting);
   o.maxOffsetDeg = options.maxOffset;
+  o.timeLimit = options.timeLimit;
   o.solver = cal::parseSolver(options.solver);
   o.progress = [](int done, int total) { progress("eval calibration", done, total); };
   const sim::CalibrationEvalResult r = sim::evalCalibration(o);
@@ -277,11 +279,20 @@ int benchCalibrationCommand(const BenchCalibrationOptions& options) {
   o.lighting = lightingFrom(options.sim.lighting);
   o.seed = options.common.seed;
   o.miscalibration = miscalibrationFrom(options.sim, o.seed);  // random (+-3 deg, from the seed) unless given
+  o.timeLimit = options.timeLimit;
   const int repeats = options.repeats;
   checkRobotModel(o.robotModel, o.field);
   std::fprintf(stderr, "bench calibration: the robot program calibrates (phase 1)\n");
   const sim::CalibrationRunResult r = sim::runCalibration(o);
-  if (r.solution.used.empty()) throw Error("calibration", "no samples: " + r.solution.reason);
+  if (r.solution.used.empty()) {
+    // Nothing to time (a phase cut short by --time-limit, or no view accepted): a run that
+    // missed its figures.
+    std::fprintf(stderr, "bench calibration: no samples to time (%s)\n", r.solution.reason.c_str());
+    writeJson(options.common.json.empty() ? "-" : options.common.json,
+              {{"solve", nlohmann::json::object()}, {"samples", 0}, {"views", r.views.size()}, {"run_wall_s", r.wallSeconds},
+               {"reason", r.solution.reason}, {"lighting", lightingJson(o.lighting)}, {"seed", o.seed}});
+    return 1;
+  }
   // The library's sample extraction, timed on the robot's own accepted views (as its Calibrator
   // ran it), each `repeats` times; the samples it used go to the solvers.
   cal::ExtractionOptions extraction;

@@ -1,10 +1,12 @@
-# -Wall -Wextra everywhere; NAO_WERROR turns warnings into errors (CI sets it).
+# -Wall -Wextra everywhere; NAO_WERROR turns warnings into errors (CI sets it). Every target of
+# ours calls nao_warnings, which also gives it the precompiled headers (PrecompiledHeaders.cmake).
 option(NAO_WERROR "Treat warnings as errors" OFF)
 function(nao_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local)
   if(NAO_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  nao_use_pch(${target})
 endfunction()
 
 # A library of all .cpp files below the calling folder (an empty one still configures).

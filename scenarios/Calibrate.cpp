@@ -357,6 +357,7 @@ CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {
     run.side = rng() % 2 ? 1 : -1;
     run.calibrator = calibrator;
     run.seed = o.seed * 7919 + static_cast<std::uint64_t>(t);
+    run.timeLimit = o.timeLimit;
 
     CalibrationTrial trial;
     trial.lighting = run.lighting.name;

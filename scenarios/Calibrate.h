@@ -126,6 +126,7 @@ struct CalibrationEvalOptions {
   double maxOffsetDeg = 3;                // injected offsets uniform in +-this, per parameter
   calibration::SolverKind solver = calibration::SolverKind::GaussNewton;
   bool compareSolvers = true;             // the robot's calibrator checks its solve with the other solver
+  double timeLimit = 600;                 // s of each trial's phase
   std::function<void(int done, int total)> progress;
 };
 

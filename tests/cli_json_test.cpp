@@ -44,10 +44,10 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "bench sim") return "bench sim --seconds 1 --repeats 1";
   if (path == "bench program") return "bench program --seconds 1 --repeats 1";
   if (path == "bench perception") return "bench perception --frames 2 --repeats 1";
-  if (path == "bench calibration") return "bench calibration --repeats 1";
+  if (path == "bench calibration") return "bench calibration --repeats 1 --time-limit 3";
   if (path == "perceive") return "perceive " + image;
   if (path == "eval perception") return "eval perception --trials 1 --lighting default";
-  if (path == "eval calibration") return "eval calibration --trials 1 --lighting default";
+  if (path == "eval calibration") return "eval calibration --trials 1 --lighting default --time-limit 3";
   if (path == "eval localization") return "eval localization --trials 1 --seconds 5 --lighting default --roll-every 0";
   if (path == "eval walk") return "eval walk --trials 1 --seconds 2";
   if (path == "eval walk-to") return "eval walk-to --trials 1";
@@ -56,7 +56,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "kick") return "kick --trials 1";
   if (path == "train ball") return "train ball --scenes 5 --lightings 1 --iterations 2 --out " + dir + "/ball.yml";
   if (path == "train friction") return "train friction --rolls 2 --max-speed 1";
-  if (path == "calibrate") return "calibrate";
+  if (path == "calibrate") return "calibrate --time-limit 3";
   if (path == "eval challenge") return "eval challenge --trials 1 --lighting default --time-limit 2";
   if (path == "calibration-challenge") return "calibration-challenge --time-limit 3";
   if (path == "match") return "match --seconds 3";

@@ -244,6 +244,7 @@ void CommandLine::declare() {
     k.sim.miscalibration = "random";
     simOptions(ck, k.sim);
     ck.count("--repeats", k.repeats, 1, 20, "rounds of 50 solves per solver");
+    ck.number("--time-limit", k.timeLimit, 1, 600, "s", "the calibration phase's time (the rules' 10 min; shorter for a quick look)");
   }
   {
     PerceiveOptions& p = o.perceive;
@@ -278,6 +279,7 @@ void CommandLine::declare() {
     ck.text("--lighting", k.lighting, "SPEC", "sweep (a random preset of the sweep per case) or " + kLightingHelp + " (default sweep)");
     ck.number("--max-offset", k.maxOffset, 0, 10, "deg", "injected offsets, uniform in +-DEG per parameter");
     ck.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "the solver scored (the other is compared)");
+    ck.number("--time-limit", k.timeLimit, 1, 600, "s", "each trial's calibration phase (the rules' 10 min; shorter for a quick look)");
 
     const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
 
@@ -446,6 +448,7 @@ void CommandLine::declare() {
     c.flag("--compare", k.compare, "also solve the same samples with the other solver");
     c.choice("--lines", k.lines, {"lsd", "vision"}, "image line segments from OpenCV's LSD or the vision pipeline first");
     c.choice("--start", k.start, {"left", "right"}, "the side line the robot starts on");
+    c.number("--time-limit", k.timeLimit, 1, 600, "s", "the calibration phase's time (the rules' 10 min; shorter for a quick look)");
     c.outputFolder("--images", k.images, "write every view annotated and the before/after pictures (paper Fig. 2)");
     c.outputFile("--record", k.record, "write the calibration log: every image the robot's Calibrator judged, with its joints and IMU angle");
     auto* fromLog = c.inputFile("--from-log", k.fromLog,
@@ -453,7 +456,7 @@ void CommandLine::declare() {
     c.text("--head-id", k.headId, "ID", "--from-log: the robot being calibrated; a log another head recorded is refused")->needs(fromLog);
     c.rule([&k] {
       if (k.fromLog.empty()) return std::string();
-      for (const char* flag : {"--lighting", "--miscalibration", "--model", "--start", "--images", "--record", "--seed"})
+      for (const char* flag : {"--lighting", "--miscalibration", "--model", "--start", "--images", "--record", "--seed", "--time-limit"})
         if (k.common.has(flag)) return std::string("--from-log: ") + flag + " is for the simulator, which a log replaces";
       return std::string();
     });

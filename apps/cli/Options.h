@@ -76,6 +76,7 @@ struct BenchCalibrationOptions {
   CommonOptions common;
   SimOptions sim;
   int repeats = 3;
+  double timeLimit = 600;
 };
 
 struct PerceiveOptions {
@@ -99,7 +100,7 @@ struct EvalCalibrationOptions {
   CommonOptions common;
   std::string lighting = "sweep", solver = "gauss-newton";
   int trials = 100;
-  double maxOffset = 3;
+  double maxOffset = 3, timeLimit = 600;
 };
 
 struct EvalLocalizationOptions {
@@ -160,6 +161,7 @@ struct CalibrateOptions {
   std::string solver = "gauss-newton", lines = "lsd", start = "right", images, store;
   std::string record, fromLog, headId;
   bool compare = false, save = false;
+  double timeLimit = 600;
 };
 
 struct ChallengeCommandOptions {
