@@ -47,7 +47,9 @@ walk --to 1,0.5,90 --randomize
 kick --trials 2
 train ball --scenes 10 --hidden 8
 calibrate --solver ceres --compare --start left --placement-error 0.1,0,5 --save --store d
-match --seconds 5 --half 30 --randomize --lighting dark
+match --seconds 5 --half 30 --randomize --lighting dark --opponent baseline
+eval match --games 3 --seconds 20 --opponent self --rows r.jsonl
+match --situation tests/situations/goal.json --replay r.html
 render --seed -1 --pose nan,1,2 --out
 eval bogus --trials 99999999999
 SEEDS

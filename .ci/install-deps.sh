@@ -20,6 +20,7 @@ packages=(
   debootstrap            # the Debian 11 root the robot bundle is tested in (tests/robot_bundle.cmake)
   qemu-user              # the robot executable on a CPU without AVX (tests/robot_bundle.cmake)
   clang libclang-rt-14-dev  # libFuzzer targets of the LoLA and GameController parsers (.ci/fuzz.sh)
+  chromium-headless-shell   # the match replay's page tested in a real browser (tests/match_replay_test.cpp)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -33,6 +33,7 @@ int calibrateCommand(const CalibrateOptions& o);
 int challengeCommand(const ChallengeCommandOptions& o);
 int matchCommand(const MatchOptions& o);
 int evalChallengeCommand(const EvalChallengeOptions& o);
+int evalMatchCommand(const EvalMatchOptions& o);
 int modulesCommand(const ModulesOptions& o);
 
 }  // namespace nao::cli

@@ -29,6 +29,7 @@ void bind(CommandLine& cl) {
   to("eval calibration", nao::cli::evalCalibrationCommand, o.evalCalibration);
   to("eval localization", nao::cli::evalLocalizationCommand, o.evalLocalization);
   to("eval challenge", nao::cli::evalChallengeCommand, o.evalChallenge);
+  to("eval match", nao::cli::evalMatchCommand, o.evalMatch);
   to("eval walk", nao::cli::evalWalkCommand, o.evalWalk);
   to("eval walk-to", nao::cli::evalWalkToCommand, o.evalWalkTo);
   to("eval getup", nao::cli::evalGetUpCommand, o.evalGetUp);

@@ -63,6 +63,7 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   context.headId = config.headId;
   if (config.motion) context.params["MotionEngine"] = *config.motion;
   if (config.calibrator) context.params["Calibrator"] = *config.calibrator;
+  if (config.behavior) context.params["BehaviorControl"] = *config.behavior;
   if (config.field) context.params[modules::kFieldParams] = *config.field;
   context.params["CameraCalibrationProvider"] = config.calibration;
   context.debug = debug_ = config.debug;

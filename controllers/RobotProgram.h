@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "controllers/MotionEngine.h"
+#include "controllers/modules/BehaviorControl.h"
 #include "controllers/modules/Calibrator.h"
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
@@ -43,6 +44,9 @@ struct RobotProgramConfig {
   // The calibrator's parameters instead of config/parameters/Calibrator.json (calibrate's
   // --solver, --lines, --compare); unset: the file.
   std::optional<modules::Calibrator::Params> calibrator;
+  // The behaviour's parameters instead of config/parameters/BehaviorControl.json (match's
+  // --opponent baseline); unset: the file.
+  std::optional<modules::BehaviorControl::Params> behavior;
   // Holds modules.json, parameters/ and robots/<head id>/. Empty: config/modules.json of the
   // data root and every module with its compiled-in defaults (no parameter files).
   std::string configDir = defaultConfigDir();

@@ -175,6 +175,17 @@ void GameControllerSim::startSecondHalf(double t) {
   go(gc::State::Initial, t);
 }
 
+void GameControllerSim::startAt(gc::State state, double secsRemaining, bool firstHalf, double t) {
+  if (over_) throw Error("GameController", "the game is over");
+  if (!(secsRemaining > 0) || secsRemaining > config_.halfSeconds)
+    throw Error("GameController", "the time left must be in (0, half length]");
+  now_ = std::max(now_, t);
+  data_.firstHalf = firstHalf ? 1 : 0;
+  remaining_ = secsRemaining;
+  log(t, "situation", std::string(gc::stateName(state)) + (firstHalf ? ", first half" : ", second half"));
+  go(state, t);
+}
+
 void GameControllerSim::point(int team, double t) {
   if (data_.state != gc::State::Playing) throw Error("GameController", "a point needs PLAYING");
   auto& score = data_.teams.at(static_cast<std::size_t>(team)).score;

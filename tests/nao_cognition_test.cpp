@@ -131,13 +131,15 @@ TEST(NaoCognition, TheSimulatedNaoThroughLolaAndTheCameraSocketLocalizesAndArriv
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
   const nlohmann::json peer = readJson(peerJson);
   ASSERT_TRUE(peer.contains("localization_error_m")) << out;
-  // Every answer within the cycle, on both sides (under the sanitizers, whose peer and program
-  // share two cores at several times the cost, at most 1 % over it from the peer's view).
+  // Every answer within the cycle, on both sides, but while the machine itself stalled (the
+  // peer's probe thread held up as long: tests/support/StallProbe.h; a 2-core CI machine does
+  // that now and then). Under the sanitizers, whose peer and program share two cores at
+  // several times the cost, at most 1 % over it from the peer's view.
   if (quick()) EXPECT_LE(peer["late_answers"].get<double>(), 0.01 * seconds / 0.012) << out;
-  else EXPECT_EQ(peer["late_answers"], 0) << out;
+  else EXPECT_EQ(peer["late_answers"].get<double>() - peer["late_answers_in_machine_stalls"].get<double>(), 0) << out;
   EXPECT_EQ(peer["missing_answers"], 0) << out;
   EXPECT_GE(peer["cycles_judged"].get<double>(), seconds / 0.012 - 2);
-  EXPECT_EQ(peer["program"]["lola"]["late"], 0);
+  EXPECT_EQ(peer["program"]["lola"]["late"].get<double>() - peer.value("program_late_in_machine_stalls", 0.0), 0);
   EXPECT_TRUE(peer["program"]["clean_stop"].get<bool>());
   // The frames went through the hand-off: 30 Hz per camera of simulated time, less the few a
   // busy machine made the peer drop (many under the sanitizers, whose renders take longer than

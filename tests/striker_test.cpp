@@ -1,6 +1,6 @@
 // The 1vs1 striker option (controllers/behavior/Striker.h) on scripted inputs: what it asks of
 // the body in each game state, where it walks to kick, when it kicks, and that it keeps off the
-// halfway line.
+// halfway line; the scripted baseline player (`match --opponent baseline`) does neither.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -117,6 +117,32 @@ TEST(Striker, WaitsShortOfTheHalfwayLineWhenTheBallIsOutOfReach) {
   s.run(i.in(), m);
   EXPECT_EQ(s.state(), Striker::State::Approach);
   EXPECT_LE(m.walkTarget.x, -0.025 - 0.25);
+}
+
+// The baseline walks to the ball wherever it lies, the other half too, and kicks it at the goal's
+// centre.
+TEST(Striker, TheBaselineKicksAtTheGoalCentreFromAnywhere) {
+  Striker::Params params;
+  params.player = "baseline";
+  const nao::FieldDimensions field;
+  Striker s(field, params);
+  Inputs i;
+  nao::MotionRequest m;
+  const Eigen::Vector2d ball(1.0, 1.0);  // in the opponent half: the striker would wait
+  i.place(Pose2(-2, 0, 0), ball);
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Approach);
+  ASSERT_EQ(m.motion, MotionType::WalkTo);
+  const double direction = std::atan2(0 - ball.y(), field.length / 2 - ball.x());
+  EXPECT_NEAR(s.lastChoice().direction, direction, 1e-9);
+  EXPECT_GT(m.walkTarget.x, 0.5) << "it crosses the halfway line";
+  // Behind the ball on the goal line: it kicks.
+  const double c = std::cos(direction), sn = std::sin(direction);
+  const Eigen::Vector2d at = ball - Eigen::Vector2d(c * params.kickBallX - sn * params.kickBallY, sn * params.kickBallX + c * params.kickBallY);
+  i.place(Pose2(at.x(), at.y(), direction), ball);
+  s.run(i.in(), m);
+  EXPECT_EQ(s.state(), Striker::State::Kick);
+  EXPECT_EQ(m.motion, MotionType::Kick);
 }
 
 }  // namespace

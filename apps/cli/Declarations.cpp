@@ -45,6 +45,10 @@ const std::string kVenueHelp =
     "none (phase 2's balls from the seed), random (the trial seed's turn through config/venues.json) or a venue's name "
     "there: its taped balls and carpet friction";
 
+const std::string kOpponentHelp =
+    "the away robot: self (our robot program, as home), baseline (ours playing the scripted baseline: to the ball, "
+    "kick at the goal) or DIR, a robot program configuration (modules.json, parameters/)";
+
 const std::string kLightingHelp =
     "lighting: a preset (default, bright, dark, warm, cold, shadows) or a key=value list "
     "(intensity, temperature, shadows, elevation, azimuth, ambient, noise; config/lighting.json)";
@@ -98,6 +102,15 @@ void debugOptions(Command& c, DebugOptions& d) {
 
 // --cameras files:DIR: DIR/top/ and DIR/bottom/ each hold PNG or JPEG images; socket:PATH: a
 // Unix socket path (it may appear later: the cameras wait for it).
+// --opponent's other value: a robot program configuration folder.
+std::string opponentConfigProblem(const std::string& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return "neither self, baseline nor a configuration folder";
+  if (!std::filesystem::is_regular_file(std::filesystem::path(dir) / "modules.json", ec))
+    return dir + ": a configuration folder holds modules.json (and parameters/)";
+  return "";
+}
+
 std::string cameraSourceProblem(const std::string& s) {
   if (s.rfind("socket:", 0) == 0) {
     const std::string path = s.substr(7);
@@ -317,6 +330,21 @@ void CommandLine::declare() {
     cc.number("--time-limit", ec.timeLimit, 1, 600, "s", "each phase's time (the rules' 10 min; shorter for a quick look)");
     cc.inputFile("--model", ec.model, "the robot's MJCF (default models/nao_v6.xml)");
     cc.outputFile("--rows", ec.rows, "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
+    EvalMatchOptions& em = o.evalMatch;
+    Command& cm = leaf(eval, "match",
+                       "many seeded 1vs1 games, our robot program at home: wins, draws, losses, points per minute and "
+                       "by kind, referee calls by rule, falls and penalties per game",
+                       em.common);
+    seedJsonField(cm);
+    cm.text("--lighting", em.lighting, "SPEC",
+            "sweep (game seed s takes preset s mod 7 of the sweep) or " + kLightingHelp + " (default sweep)");
+    cm.inputFile("--model", em.model, "the robot's MJCF (default models/nao_v6.xml)");
+    cm.count("--games", em.games, 1, 100000, "games; game i has seed --seed + i");
+    cm.number("--half", em.halfSeconds, 10, 600, "s", "the length of a half (the rules' 5 min)");
+    cm.number("--seconds", em.seconds, 1, 7200, "s", "stop each game after this much simulated time (unless given: whole games)");
+    cm.flag("--randomize", em.randomize, randomize);
+    cm.choice("--opponent", em.opponent, {"self", "baseline"}, kOpponentHelp, "DIR", opponentConfigProblem);
+    cm.outputFile("--rows", em.rows, "one JSON line per game, appended as it ends; seeds already in FILE are not run again");
     EvalMotionOptions& w = o.evalWalk;
     w.seconds = 60;
     Command& cw = leaf(eval, "walk", "random walk commands every 2-5 s: falls, odometry error", w.common);
@@ -429,6 +457,13 @@ void CommandLine::declare() {
     c.number("--seconds", k.seconds, 1, 7200, "s", "stop after this much simulated time (unless given: the whole game, both halves and any extensions)");
     c.number("--half", k.halfSeconds, 10, 600, "s", "the length of a half (the rules' 5 min)");
     c.flag("--randomize", k.randomize, "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0");
+    c.choice("--opponent", k.opponent, {"self", "baseline"}, kOpponentHelp, "DIR", opponentConfigProblem);
+    c.inputFile("--situation", k.situation,
+                "play a scripted situation instead of a game (JSON: the GameController's state and clock, robots "
+                "placed and scripted or running their program, balls placed or kicked; docs/match/README.md)");
+    c.outputFile("--replay", k.replay,
+                 "write the game's replay: one self-contained HTML page (the field from above, true and believed "
+                 "poses, true and modelled balls, the referee's calls on a timeline)");
   }
   {
     ModulesOptions& m = o.modules;

@@ -179,6 +179,15 @@ struct MatchOptions {
   double seconds = 0;      // 0 (not given): the whole game
   double halfSeconds = 300;
   bool randomize = false;
+  std::string opponent = "self", replay, situation;
+};
+
+struct EvalMatchOptions {
+  CommonOptions common;
+  int games = 20;
+  double halfSeconds = 300, seconds = 0;  // seconds 0: whole games
+  bool randomize = false;
+  std::string opponent = "baseline", lighting = "sweep", model, rows;
 };
 
 struct ModulesOptions {
@@ -198,6 +207,7 @@ struct Options {
   EvalCalibrationOptions evalCalibration;
   EvalLocalizationOptions evalLocalization;
   EvalChallengeOptions evalChallenge;
+  EvalMatchOptions evalMatch;
   EvalMotionOptions evalWalk, evalWalkTo, evalGetUp;
   WalkOptions walk;
   KickOptions kick;

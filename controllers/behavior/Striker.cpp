@@ -62,13 +62,19 @@ void Striker::run(const BehaviorInput& in, MotionRequest& motion) {
     return;
   }
   const Eigen::Vector2d ball = in.ball.rolling ? in.ball.fieldEndPosition : in.ball.fieldPosition;
-  choice_ = chooseKick(ball, std::nullopt, field_, params_.kick);
+  const bool baseline = params_.player == "baseline";
+  if (baseline) {
+    const Eigen::Vector2d goal(field_.length / 2, 0);
+    choice_ = KickChoice{KickChoice::Kind::Goal, std::atan2(goal.y() - ball.y(), goal.x() - ball.x()), goal, 0};
+  } else {
+    choice_ = chooseKick(ball, std::nullopt, field_, params_.kick);
+  }
   // The kick pose: the ball at the kick's position in front of the foot, facing the direction.
   const double c = std::cos(choice_.direction), s = std::sin(choice_.direction);
   const Eigen::Vector2d at = ball - Eigen::Vector2d(c * params_.kickBallX - s * params_.kickBallY,
                                                     s * params_.kickBallX + c * params_.kickBallY);
   const double limitX = -field_.lineWidth / 2 - params_.halfwayClearance;
-  if (at.x() > limitX) {
+  if (!baseline && at.x() > limitX) {
     // Out of reach: the robot would touch the halfway line. Wait facing the ball.
     go(State::Wait, t);
     const Eigen::Vector2d wait(params_.waitX, std::clamp(ball.y(), -field_.width / 2 + 0.5, field_.width / 2 - 0.5));

@@ -4,6 +4,9 @@
 // ball (turn in place), walk behind it on the line of the chosen kick (KickChoice) and kick;
 // while the ball lies in the opponent half (or too near the halfway line to get behind it),
 // wait short of the halfway line facing it. The robot's own field frame: it attacks +x.
+// player "baseline" is the scripted opponent of `match --opponent baseline`: it walks to the
+// ball wherever it lies and kicks it at the opponent goal's centre (no kick choice, no regard
+// for the halfway line).
 #include <string>
 
 #include "controllers/behavior/BehaviorInput.h"
@@ -18,6 +21,7 @@ namespace nao::behavior {
 class Striker {
  public:
   struct Params {
+    std::string player = "striker";  // or "baseline"
     Pose2 readyPose{-1.0, 0.0, 0.0};  // where READY ends
     double kickBallX = 0.16, kickBallY = 0.05;  // m: the ball in the robot frame at a kick (the kick's own)
     double alignDistance = 0.05;  // m: the ball this near its kick position ...
@@ -54,6 +58,7 @@ const char* strikerStateName(Striker::State s);
 
 template <class V>
 void describe(V& v, Striker::Params& p) {
+  v("player", p.player, {"striker", "baseline"});
   v("readyX", p.readyPose.x, -10.0, 0.0);
   v("readyY", p.readyPose.y, -10.0, 10.0);
   v("kickBallX", p.kickBallX, 0.0, 0.5);
