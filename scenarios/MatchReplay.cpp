@@ -184,14 +184,21 @@ Eigen::Vector2d replayPixel(const FieldDimensions& f, const Eigen::Vector2d& p) 
 
 nlohmann::json replayData(const FieldDimensions& f, const std::vector<ReplayFrame>& frames, const nlohmann::json& events) {
   const std::size_t balls = frames.empty() ? 0 : frames.front().balls.size();
+  // "r0_x", "ball3_y": appended piecewise (GCC 12 warns falsely on "literal" + std::string at -O2).
+  auto name = [](const char* prefix, std::size_t i, const char* suffix) {
+    std::string n(prefix);
+    n += std::to_string(i);
+    n += suffix;
+    return n;
+  };
   nlohmann::json layout = {"t", "state", "home_score", "away_score"};
-  for (int r = 0; r < 2; ++r)
-    for (const char* k : {"x", "y", "theta", "penalised", "belief_valid", "belief_x", "belief_y", "belief_theta", "ball_valid",
-                          "ball_x", "ball_y"})
-      layout.push_back("r" + std::to_string(r) + "_" + k);
+  for (std::size_t r = 0; r < 2; ++r)
+    for (const char* k : {"_x", "_y", "_theta", "_penalised", "_belief_valid", "_belief_x", "_belief_y", "_belief_theta",
+                          "_ball_valid", "_ball_x", "_ball_y"})
+      layout.push_back(name("r", r, k));
   for (std::size_t b = 0; b < balls; ++b) {
-    layout.push_back("ball" + std::to_string(b) + "_x");
-    layout.push_back("ball" + std::to_string(b) + "_y");
+    layout.push_back(name("ball", b, "_x"));
+    layout.push_back(name("ball", b, "_y"));
   }
   nlohmann::json rows = nlohmann::json::array();
   for (const ReplayFrame& fr : frames) {
