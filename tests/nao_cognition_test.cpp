@@ -45,6 +45,9 @@ nlohmann::json readJson(const fs::path& path) {
 }
 
 TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
+  // Real time is the Release stage's to judge: under the sanitizers the program runs at several
+  // times its cost and answers late (measured: a dozen answers 12-18 ms late in 10 s).
+  if (quick()) GTEST_SKIP() << "real-time answers: the Release stage runs it";
   const fs::path dir = fs::path(::testing::TempDir()) / "nao_cognition_test";
   fs::remove_all(dir);
   fs::create_directories(dir / "frames" / "top");
@@ -119,6 +122,8 @@ TEST(NaoCognition, FileCamerasThroughTheLolaPeerWithoutALateAnswer) {
 // localization; the peer scores its belief against the truth, and the figures agree with
 // `run --backend sim` of the same scene.
 TEST(NaoCognition, TheSimulatedNaoThroughLolaAndTheCameraSocketLocalizesAndArrives) {
+  // As above: under the sanitizers the renders and the program miss the real-time pace.
+  if (quick()) GTEST_SKIP() << "real-time answers and frame rates: the Release stage runs it";
   const fs::path dir = fs::path(::testing::TempDir()) / "nao_sim_peer_test";
   fs::remove_all(dir);
   fs::create_directories(dir);
