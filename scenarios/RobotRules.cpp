@@ -106,7 +106,12 @@ std::optional<RobotRules::Call> RobotRules::update(double t, gc::State state, co
     if (standingSince_ < 0 && since >= params_.getUpLimit)
       return Call{PenaltyRule::FallenRobot, format("not standing %.1f s after the fall (tilt %.0f deg, torso %.2f m high)", since, truth.tilt, truth.height)};
   }
-  if (state != gc::State::Playing) return std::nullopt;
+  if (state != gc::State::Playing) {
+    // Each rule of PLAYING counts from PLAYING: standing in READY and SET (as a robot must, at
+    // its kick-off position) is no inactivity once play resumes after a global game stuck.
+    inactiveSince_ = wideSince_ = inGoalSince_ = -1;
+    return std::nullopt;
+  }
 
   if (truth.handOnBall && fallenSince_ < 0)
     return Call{PenaltyRule::PlayingWithArms, format("a hand touched a ball, torso at (%.2f, %.2f) m", truth.torso.x(), truth.torso.y())};

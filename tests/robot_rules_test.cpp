@@ -129,6 +129,24 @@ TEST(RobotRules, TenSecondsWithoutActivityIsInactive) {
                }).called);
 }
 
+// Idle before a global game stuck, then READY and SET standing still: PLAYING starts a new count
+// (a call at the first cycle of PLAYING was seen in a whole game at 8cc3a74).
+TEST(RobotRules, InactivityBeforeAStoppageDoesNotCarryIntoTheNextPlaying) {
+  RobotRules rules(field(), 0);
+  const auto idle = [](double) {
+    auto t = standing(-2, 0);
+    t.active = false;
+    return t;
+  };
+  EXPECT_FALSE(run(rules, State::Playing, 8, idle).called);
+  EXPECT_FALSE(run(rules, State::Ready, 45, idle, 8).called);
+  EXPECT_FALSE(run(rules, State::Set, 5, idle, 53).called);
+  const Result r = run(rules, State::Playing, 20, idle, 58.01);
+  ASSERT_TRUE(r.called);
+  EXPECT_EQ(r.rule, PenaltyRule::InactiveRobot);
+  EXPECT_NEAR(r.t, 68.01, 0.02);
+}
+
 TEST(RobotRules, AWideStanceAHandOnTheBallAndTheGoalAreCalled) {
   RobotRules wide(field(), 0);
   const Result w = run(wide, State::Playing, 10, [](double) { return standing(-2, 0, 0, 0.4); });
