@@ -50,6 +50,9 @@ calibrate --solver ceres --compare --start left --placement-error 0.1,0,5 --save
 match --seconds 5 --half 30 --randomize --lighting dark --opponent baseline
 eval match --games 3 --seconds 20 --opponent self --rows r.jsonl
 match --situation tests/situations/goal.json --replay r.html
+batch eval challenge --seeds 1-40,45 --randomize --runner slurm --chunk 2 --dir d --resume
+batch eval localization --trials 3 --runner parallel --sshlogin 2/:,host --jobs 4 --json -
+eval localization --seeds 5,7-9 --seconds 5 --rows r.jsonl
 render --seed -1 --pose nan,1,2 --out
 eval bogus --trials 99999999999
 SEEDS

@@ -21,6 +21,8 @@ packages=(
   qemu-user              # the robot executable on a CPU without AVX (tests/robot_bundle.cmake)
   clang libclang-rt-14-dev  # libFuzzer targets of the LoLA and GameController parsers (.ci/fuzz.sh)
   chromium-headless-shell   # the match replay's page tested in a real browser (tests/match_replay_test.cpp)
+  parallel                  # batch --runner parallel (GNU parallel)
+  slurm-wlm munge           # batch --runner slurm on a single-node Slurm (tools/slurm-local.sh; tests/batch_test.cpp)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -123,6 +123,7 @@ int evalChallengeCommand(const EvalChallengeOptions& options) {
   checkRobotModel(o.robotModel, o.field);
   o.trials = options.trials;
   o.seed = options.common.seed;
+  o.seeds = options.seeds;
   o.lightings = lightingsFrom(options.lighting);
   o.randomize = options.randomize;
   o.skipCalibration = options.skipCalibration;
@@ -148,8 +149,9 @@ int evalChallengeCommand(const EvalChallengeOptions& options) {
   RowWriter writeRow(options.rows);
   nlohmann::json j = sim::evalChallenge(o, rows, [&](const nlohmann::json& row) { writeRow(row); });
   j["seed"] = o.seed;
+  if (!o.seeds.empty()) j["seed_list"] = o.seeds;
   std::fprintf(stderr, "eval challenge: %d trials, %zu failed, terminations %s; every report within 0.05 m in %.0f %% of the trials\n",
-               o.trials, j["failures"].size(), j["terminations"].dump().c_str(), 100 * j["within_0_05_m"].get<double>());
+               j["trials"].get<int>(), j["failures"].size(), j["terminations"].dump().c_str(), 100 * j["within_0_05_m"].get<double>());
   if (!options.common.json.empty()) writeJson(options.common.json, j);
   return 0;
 }

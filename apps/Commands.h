@@ -35,5 +35,6 @@ int matchCommand(const MatchOptions& o);
 int evalChallengeCommand(const EvalChallengeOptions& o);
 int evalMatchCommand(const EvalMatchOptions& o);
 int modulesCommand(const ModulesOptions& o);
+int batchCommand(const BatchOptions& o);  // apps/BatchCommand.cpp
 
 }  // namespace nao::cli

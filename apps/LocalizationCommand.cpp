@@ -2,12 +2,14 @@
 // simulator's truth (scenarios/LocalizationEval.h), with --rows for evaluations that span
 // sessions: one JSON line per trial, appended and flushed as the trial ends.
 #include <cstdio>
+#include <set>
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/Rows.h"
 #include "apps/SimOptions.h"
 #include "robot/Error.h"
+#include "scenarios/EvalRows.h"
 #include "scenarios/LocalizationEval.h"
 
 namespace nao::cli {
@@ -28,6 +30,7 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
   o.field = fieldFrom(options.common);
   o.trials = options.trials;
   o.seed = options.common.seed;
+  o.seeds = options.seeds;
   o.lightings = lightingsFrom(options.lighting);
   o.randomize = options.randomize;
   o.walkSeconds = options.seconds;
@@ -53,11 +56,10 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
   std::vector<nlohmann::json> rows;
   if (!options.rows.empty()) {
     rows = readRows(options.rows, "eval localization");
+    const auto mine = sim::trialSeeds(o.seed, o.trials, o.seeds, "--trials");
+    const std::set<std::uint64_t> seeds(mine.begin(), mine.end());
     std::size_t others = 0;
-    for (const auto& r : rows) {
-      const auto s = r.at("seed").get<std::uint64_t>();
-      others += s < o.seed || s >= o.seed + static_cast<std::uint64_t>(o.trials);
-    }
+    for (const auto& r : rows) others += !seeds.count(r.at("seed").get<std::uint64_t>());
     if (others > 0)
       std::fprintf(stderr, "eval localization: %s holds %zu rows of seeds outside this run's; they are not counted\n",
                    options.rows.c_str(), others);
@@ -66,6 +68,7 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
   const nlohmann::json aggregate = sim::evalLocalization(o, rows, [&](const nlohmann::json& row) { writeRow(row); });
   nlohmann::json j = aggregate;
   j["seed"] = o.seed;
+  if (!o.seeds.empty()) j["seed_list"] = o.seeds;
   nlohmann::json names = nlohmann::json::array();
   for (const auto& l : o.lightings) names.push_back(l.name);
   j["lighting"] = names;
@@ -73,7 +76,7 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
                "eval localization: %d trials: position median %s m p95 %s m max %s m; heading median %s deg p95 %s deg; "
                "mirrored %s; kidnap %d/%d recovered (median %s s); ball 0-2 m median %s m, 2-4 m %s m; rolling end "
                "median %s m; false balls %s\n",
-               o.trials, fixed(j["position_error_m"]["median"], "%.3f").c_str(), fixed(j["position_error_m"]["p95"], "%.3f").c_str(),
+               static_cast<int>(sim::trialSeeds(o.seed, o.trials, o.seeds, "--trials").size()), fixed(j["position_error_m"]["median"], "%.3f").c_str(), fixed(j["position_error_m"]["p95"], "%.3f").c_str(),
                fixed(j["position_error_m"]["max"], "%.3f").c_str(), fixed(j["heading_error_deg"]["median"], "%.2f").c_str(),
                fixed(j["heading_error_deg"]["p95"], "%.2f").c_str(), fixed(j["mirrored_fraction"], "%.4f").c_str(),
                j["kidnap"]["recovered"].get<int>(), j["kidnap"]["trials"].get<int>(),

@@ -58,6 +58,7 @@ int evalMatchCommand(const EvalMatchOptions& options) {
   checkRobotModel(o.match.robotModel, o.match.field);
   o.games = options.games;
   o.seed = options.common.seed;
+  o.seeds = options.seeds;
   o.lightings = lightingsFrom(options.lighting);
   o.match.progress = [](double t, const std::string& status) {
     if (static_cast<int>(t) % 60 < 10) std::fprintf(stderr, "eval match:   %5.0f s simulated, %s\n", t, status.c_str());
@@ -73,6 +74,7 @@ int evalMatchCommand(const EvalMatchOptions& options) {
   RowWriter writeRow(options.rows);
   nlohmann::json j = sim::evalMatch(o, rows, [&](const nlohmann::json& row) { writeRow(row); });
   j["seed"] = o.seed;
+  if (!o.seeds.empty()) j["seed_list"] = o.seeds;
   std::fprintf(stderr, "eval match: %d games: %d won, %d drawn, %d lost; %.2f points per minute (opponent %.2f); %zu unfinished\n",
                j["games"].get<int>(), j["wins"].get<int>(), j["draws"].get<int>(), j["losses"].get<int>(),
                j["points_per_minute"].get<double>(), j["opponent_points_per_minute"].get<double>(), j["unfinished"].size());

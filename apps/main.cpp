@@ -41,6 +41,7 @@ void bind(CommandLine& cl) {
   to("calibration-challenge", nao::cli::challengeCommand, o.challenge);
   to("match", nao::cli::matchCommand, o.match);
   to("modules", nao::cli::modulesCommand, o.modules);
+  to("batch", nao::cli::batchCommand, o.batch);
 }
 
 }  // namespace

@@ -151,24 +151,12 @@ nlohmann::json aggregateChallengeRows(std::vector<nlohmann::json> rows) {
 
 nlohmann::json evalChallenge(const ChallengeEvalOptions& o, std::vector<nlohmann::json> rows,
                              const std::function<void(const nlohmann::json& row)>& onRow) {
-  if (o.trials < 1) throw Error("--trials", "must be at least 1");
+  const std::vector<std::uint64_t> seeds = trialSeeds(o.seed, o.trials, o.seeds, "--trials");
   if (o.lightings.empty()) throw Error("--lighting", "no lighting");
   const nlohmann::json settings = challengeEvalSettings(o);
-  std::map<std::uint64_t, nlohmann::json> done = rowsBySeed(std::move(rows), settings);
-  std::vector<nlohmann::json> mine;
-  for (int i = 0; i < o.trials; ++i) {
-    const std::uint64_t seed = o.seed + static_cast<std::uint64_t>(i);
-    auto it = done.find(seed);
-    if (it != done.end()) {
-      mine.push_back(it->second);
-    } else {
-      nlohmann::json row = runChallengeTrial(o, seed);
-      if (onRow) onRow(row);
-      mine.push_back(std::move(row));
-    }
-    if (o.progress) o.progress(mine.back(), i + 1, o.trials);
-  }
-  return aggregateChallengeRows(std::move(mine));
+  return aggregateChallengeRows(collectRows(
+      seeds, rowsBySeed(std::move(rows), settings), [&](std::uint64_t seed) { return runChallengeTrial(o, seed); }, onRow,
+      o.progress));
 }
 
 }  // namespace nao::sim

@@ -25,6 +25,7 @@ struct ChallengeEvalOptions {
   std::string robotModel;
   int trials = 100;
   std::uint64_t seed = 1;
+  std::vector<std::uint64_t> seeds;  // not empty: exactly these trials (trials and seed aside)
   std::vector<Lighting> lightings;  // trial seed s uses lightings[s % size]
   bool randomize = false;
   bool skipCalibration = false;

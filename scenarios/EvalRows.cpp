@@ -4,6 +4,15 @@
 
 namespace nao::sim {
 
+std::vector<std::uint64_t> trialSeeds(std::uint64_t first, int count, const std::vector<std::uint64_t>& list,
+                                      const char* countFlag) {
+  if (!list.empty()) return list;
+  if (count < 1) throw Error(countFlag, "must be at least 1");
+  std::vector<std::uint64_t> seeds;
+  for (int i = 0; i < count; ++i) seeds.push_back(first + static_cast<std::uint64_t>(i));
+  return seeds;
+}
+
 std::map<std::uint64_t, nlohmann::json> rowsBySeed(std::vector<nlohmann::json> rows, const nlohmann::json& settings) {
   std::map<std::uint64_t, nlohmann::json> done;
   for (auto& r : rows) {
@@ -14,6 +23,28 @@ std::map<std::uint64_t, nlohmann::json> rowsBySeed(std::vector<nlohmann::json> r
     done[seed] = std::move(r);
   }
   return done;
+}
+
+std::vector<nlohmann::json> collectRows(const std::vector<std::uint64_t>& seeds, std::map<std::uint64_t, nlohmann::json> done,
+                                        const std::function<nlohmann::json(std::uint64_t seed)>& run,
+                                        const std::function<void(const nlohmann::json& row)>& onRow,
+                                        const std::function<void(const nlohmann::json& row, int done, int total)>& progress,
+                                        const std::function<void(const nlohmann::json& row)>& checkDone) {
+  std::vector<nlohmann::json> rows;
+  const int total = static_cast<int>(seeds.size());
+  for (const std::uint64_t seed : seeds) {
+    auto it = done.find(seed);
+    if (it != done.end()) {
+      if (checkDone) checkDone(it->second);
+      rows.push_back(it->second);
+    } else {
+      nlohmann::json row = run(seed);
+      if (onRow) onRow(row);
+      rows.push_back(std::move(row));
+    }
+    if (progress) progress(rows.back(), static_cast<int>(rows.size()), total);
+  }
+  return rows;
 }
 
 }  // namespace nao::sim

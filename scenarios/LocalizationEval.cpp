@@ -478,29 +478,19 @@ nlohmann::json aggregateLocalizationRows(std::vector<nlohmann::json> rows) {
 
 nlohmann::json evalLocalization(const LocalizationEvalOptions& o, std::vector<nlohmann::json> rows,
                                 const std::function<void(const nlohmann::json& row)>& onRow) {
-  if (o.trials < 1) throw Error("--trials", "must be at least 1");
+  const std::vector<std::uint64_t> seeds = trialSeeds(o.seed, o.trials, o.seeds, "--trials");
   if (o.lightings.empty()) throw Error("--lighting", "no lighting");
   const nlohmann::json settings = localizationEvalSettings(o);
-  std::map<std::uint64_t, nlohmann::json> done = rowsBySeed(std::move(rows), settings);
-  std::vector<nlohmann::json> mine;
-  int count = 0;
-  for (int i = 0; i < o.trials; ++i) {
-    const std::uint64_t seed = o.seed + static_cast<std::uint64_t>(i);
-    auto it = done.find(seed);
-    if (it != done.end()) {
-      const std::string lighting = lightingOf(o, seed).name;
-      if (it->second.at("lighting") != lighting)
-        throw Error("--rows", "the row of seed " + std::to_string(seed) + " has lighting " + it->second.at("lighting").dump() +
-                                  ", this run " + lighting);
-      mine.push_back(it->second);
-    } else {
-      nlohmann::json row = runLocalizationTrial(o, seed);
-      if (onRow) onRow(row);
-      mine.push_back(std::move(row));
-    }
-    if (o.progress) o.progress(mine.back(), ++count, o.trials);
-  }
-  return aggregateLocalizationRows(std::move(mine));
+  const auto checkLighting = [&](const nlohmann::json& row) {
+    const std::uint64_t seed = row.at("seed").get<std::uint64_t>();
+    const std::string lighting = lightingOf(o, seed).name;
+    if (row.at("lighting") != lighting)
+      throw Error("--rows", "the row of seed " + std::to_string(seed) + " has lighting " + row.at("lighting").dump() +
+                                ", this run " + lighting);
+  };
+  return aggregateLocalizationRows(collectRows(
+      seeds, rowsBySeed(std::move(rows), settings), [&](std::uint64_t seed) { return runLocalizationTrial(o, seed); },
+      onRow, o.progress, checkLighting));
 }
 
 }  // namespace nao::sim

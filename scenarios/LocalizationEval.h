@@ -30,6 +30,7 @@ struct LocalizationEvalOptions {
   FieldDimensions field;
   int trials = 8;
   std::uint64_t seed = 1;  // trial i has seed `seed + i`; everything in a trial follows from its seed
+  std::vector<std::uint64_t> seeds;  // not empty: exactly these trials (trials and seed aside)
   // The presets; trial seed s uses lightings[s % size] (one entry: every trial the same).
   std::vector<Lighting> lightings{Lighting{}};
   bool randomize = false;  // foreign robots (as eval walk --randomize) and camera offsets it was calibrated for

@@ -127,27 +127,16 @@ nlohmann::json aggregateMatchRows(std::vector<nlohmann::json> rows) {
 
 nlohmann::json evalMatch(const MatchEvalOptions& o, std::vector<nlohmann::json> rows,
                          const std::function<void(const nlohmann::json& row)>& onRow) {
-  if (o.games < 1) throw Error("--games", "must be at least 1");
+  const std::vector<std::uint64_t> seeds = trialSeeds(o.seed, o.games, o.seeds, "--games");
   if (o.lightings.empty()) throw Error("--lighting", "no lighting");
   const nlohmann::json settings = matchEvalSettings(o);
-  std::map<std::uint64_t, nlohmann::json> done = rowsBySeed(std::move(rows), settings);
-  std::vector<nlohmann::json> mine;
-  for (int i = 0; i < o.games; ++i) {
-    const std::uint64_t seed = o.seed + static_cast<std::uint64_t>(i);
-    auto it = done.find(seed);
-    if (it != done.end()) {
-      mine.push_back(it->second);
-    } else {
-      MatchOptions m = o.match;
-      m.seed = seed;
-      m.lighting = o.lightings[seed % o.lightings.size()];
-      nlohmann::json row = matchRow(runMatch(m), seed, m.lighting.name, settings);
-      if (onRow) onRow(row);
-      mine.push_back(std::move(row));
-    }
-    if (o.progress) o.progress(mine.back(), i + 1, o.games);
-  }
-  nlohmann::json j = aggregateMatchRows(std::move(mine));
+  const auto play = [&](std::uint64_t seed) {
+    MatchOptions m = o.match;
+    m.seed = seed;
+    m.lighting = o.lightings[seed % o.lightings.size()];
+    return matchRow(runMatch(m), seed, m.lighting.name, settings);
+  };
+  nlohmann::json j = aggregateMatchRows(collectRows(seeds, rowsBySeed(std::move(rows), settings), play, onRow, o.progress));
   j["settings"] = settings;
   return j;
 }

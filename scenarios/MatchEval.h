@@ -18,6 +18,7 @@ struct MatchEvalOptions {
   MatchOptions match;               // field, model, randomize, half length, opponent (seed and lighting per game)
   int games = 20;
   std::uint64_t seed = 1;
+  std::vector<std::uint64_t> seeds;  // not empty: exactly these games (games and seed aside)
   std::vector<Lighting> lightings;  // game seed s uses lightings[s % size]
   std::function<void(const nlohmann::json& row, int done, int total)> progress;
 };

@@ -10,3 +10,7 @@ add_dependencies(cli_json_test nao-soccer)
 # --debug on the commands: timing, walk_trace, refusals, stdout kept for the JSON.
 nao_add_test(debug_channels_test SOURCES debug_channels_test.cpp LIBS nao_robot TIMEOUT 600)
 add_dependencies(debug_channels_test nao-soccer)
+# batch: every runner (local, GNU parallel, a single-node Slurm from tools/slurm-local.sh, which
+# needs root: CI runs as root) against one uninterrupted evaluation; resume; crashes; bad input.
+nao_add_test(batch_test SOURCES batch_test.cpp LIBS nao_batch TIMEOUT 1200)
+add_dependencies(batch_test nao-soccer)

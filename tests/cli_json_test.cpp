@@ -62,6 +62,8 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "match") return "match --seconds 3";
   if (path == "eval match") return "eval match --games 1 --seconds 3 --lighting default";
   if (path == "modules") return "modules";
+  if (path == "batch")
+    return "batch eval localization --trials 1 --seconds 5 --lighting default --roll-every 0 --dir " + dir + "/batch";
   return "";
 }
 
@@ -82,7 +84,7 @@ TEST(CliJson, EveryCommandPrintsOnlyJsonOnStdout) {
     EXPECT_FALSE(fs::exists(fs::current_path() / "MUJOCO_LOG.TXT"));
     ++checked;
   }
-  EXPECT_EQ(checked, 23);
+  EXPECT_EQ(checked, 24);
 }
 
 }  // namespace

@@ -282,6 +282,52 @@ CLI::Option* Command::choiceOrNumbers(const std::string& name, std::string& choi
   return o->type_name(join(choices, "|") + "|" + metavar);
 }
 
+namespace {
+
+constexpr long long kMaxSeed = 4294967295LL + 1000000;
+constexpr std::size_t kMaxSeeds = 100000;
+
+// "" when fine, else the problem; the seeds in order of the list.
+std::string seedListProblem(const std::string& s, std::vector<std::uint64_t>* out) {
+  std::vector<std::uint64_t> seeds;
+  std::set<std::uint64_t> seen;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = std::min(s.find(',', pos), s.size());
+    const std::string item = s.substr(pos, comma - pos);
+    const std::size_t dash = item.find('-', 1);
+    long long a = 0, b = 0;
+    if (auto p = parseInteger(item.substr(0, dash), a); !p.empty()) return p + " (a seed list: 1-40,45)";
+    b = a;
+    if (dash != std::string::npos)
+      if (auto p = parseInteger(item.substr(dash + 1), b); !p.empty()) return p + " (a seed list: 1-40,45)";
+    if (a < 0 || b > kMaxSeed) return quoted(item) + " is outside 0.." + std::to_string(kMaxSeed);
+    if (b < a) return quoted(item) + " is a range that goes down";
+    if (static_cast<std::size_t>(b - a) >= kMaxSeeds || seeds.size() + static_cast<std::size_t>(b - a) >= kMaxSeeds)
+      return "more than " + std::to_string(kMaxSeeds) + " seeds";
+    for (long long v = a; v <= b; ++v) {
+      if (!seen.insert(static_cast<std::uint64_t>(v)).second) return "seed " + std::to_string(v) + " is listed twice";
+      seeds.push_back(static_cast<std::uint64_t>(v));
+    }
+    if (comma >= s.size()) break;
+    pos = comma + 1;
+  }
+  if (out) *out = std::move(seeds);
+  return "";
+}
+
+}  // namespace
+
+CLI::Option* Command::seedList(const std::string& name, std::vector<std::uint64_t>& value, const std::string& help) {
+  auto* raw = raw_.emplace_back(std::make_unique<std::string>()).get();
+  auto* o = add(name, *raw, help + "; a list like 1-40,45 (ranges inclusive), each seed once", specOf(OptionSpec::Kind::Text),
+                [](const std::string& s) { return seedListProblem(s, nullptr); });
+  converters_.push_back([raw, &value] {
+    if (!raw->empty()) seedListProblem(*raw, &value);
+  });
+  return o->type_name("LIST");
+}
+
 CLI::Option* Command::size(const std::string& name, int& width, int& height, const std::string& help) {
   auto* raw = raw_.emplace_back(std::make_unique<std::string>()).get();
   OptionSpec spec = specOf(OptionSpec::Kind::Numbers);

@@ -90,6 +90,9 @@ class Command {
                                const std::string& help);
   // An image size WIDTHxHEIGHT in pixels (width even: YUYV pairs).
   CLI::Option* size(const std::string& name, int& width, int& height, const std::string& help);
+  // A list of seeds: "1-40,45,50-52" (ranges inclusive), each 0..4294967295 + 10^6 (a range's
+  // run of `--seed N --trials M` goes past 2^32), none twice, at most 100000 in all.
+  CLI::Option* seedList(const std::string& name, std::vector<std::uint64_t>& value, const std::string& help);
   CLI::Option* inputFile(const std::string& name, std::string& value, const std::string& help);
   CLI::Option* outputFile(const std::string& name, std::string& value, const std::string& help);
   CLI::Option* outputFolder(const std::string& name, std::string& value, const std::string& help);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +14,7 @@
 #include "apps/cli/CommandLine.h"
 #include "apps/cli/Options.h"
 #include "robot/Debug.h"
+#include "robot/Error.h"
 #include "robot/JointLimits.h"
 #include "robot/OutputFiles.h"
 #include "robot/Paths.h"
@@ -84,6 +86,35 @@ void seedJsonField(Command& c) {
   c.seed();
   c.json();
   c.field(kFieldFile);
+}
+
+// --seeds LIST of a resumable evaluation: exactly these seeds, instead of --seed and the count.
+void seedsOption(Command& c, std::vector<std::uint64_t>& seeds, const std::string& countFlag) {
+  c.seedList("--seeds", seeds, "run exactly these seeds (as batch's chunks do) instead of --seed and " + countFlag)
+      ->excludes(c.app()->get_option("--seed"))
+      ->excludes(c.app()->get_option(countFlag));
+}
+
+// What batch runs: `eval TARGET [options]` of an evaluation with rows, its options as valid as
+// they would be alone; --rows is batch's. Throws nao::Error naming the word.
+void checkBatchEval(const std::vector<std::string>& args) {
+  if (args.empty()) throw Error("batch", "needs the evaluation to run: batch eval challenge|match|localization [its options]");
+  if (args[0] != "eval") {
+    if (args[0].size() > 1 && args[0][0] == '-')
+      throw Error(args[0].substr(0, args[0].find('=')), "not an option of 'batch' (nao-soccer batch --help lists them)");
+    throw Error(args[0], "unexpected argument for 'batch' (batch eval challenge|match|localization [its options])");
+  }
+  CommandLine inner;
+  std::vector<const char*> argv{"nao-soccer"};
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::string help;
+  const Command* c = inner.parse(static_cast<int>(argv.size()), argv.data(), help);
+  if (!c) throw Error("--help", "batch runs an evaluation, it does not print its help (nao-soccer " + args[0] + " --help)");
+  static const std::set<std::string> withRows = {"eval challenge", "eval match", "eval localization"};
+  if (!withRows.count(c->path()))
+    throw Error(c->path(), "has no rows to split yet (batch runs eval challenge, eval match and eval localization)");
+  for (const auto& a : args)
+    if (a == "--rows" || a.rfind("--rows=", 0) == 0) throw Error("--rows", "batch keeps the rows itself: one file per chunk in --dir");
 }
 
 std::string pathProblem(const std::string& s) { return s.empty() ? "an empty path" : ""; }
@@ -311,6 +342,7 @@ void CommandLine::declare() {
     cl.number("--seconds", l.seconds, 5, 600, "s", "the scripted walk of each trial (a kidnap or a kick follows)");
     cl.count("--kidnap-every", l.kidnapEvery, 0, 1000, "trial seeds s with s mod N = N-1 end with a kidnap (0: none)");
     cl.count("--roll-every", l.rollEvery, 0, 1000, "trial seeds s with s mod N = 1 end with a rolling ball (0: none)");
+    seedsOption(cl, l.seeds, "--trials");
     cl.outputFile("--rows", l.rows,
                   "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
     debugOptions(cl, l.debug);
@@ -329,6 +361,7 @@ void CommandLine::declare() {
     cc.number("--max-offset", ec.maxOffset, 0, 6, "deg", "injected camera offsets uniform in +-this per parameter");
     cc.number("--time-limit", ec.timeLimit, 1, 600, "s", "each phase's time (the rules' 10 min; shorter for a quick look)");
     cc.inputFile("--model", ec.model, "the robot's MJCF (default models/nao_v6.xml)");
+    seedsOption(cc, ec.seeds, "--trials");
     cc.outputFile("--rows", ec.rows, "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
     EvalMatchOptions& em = o.evalMatch;
     Command& cm = leaf(eval, "match",
@@ -344,6 +377,7 @@ void CommandLine::declare() {
     cm.number("--seconds", em.seconds, 1, 7200, "s", "stop each game after this much simulated time (unless given: whole games)");
     cm.flag("--randomize", em.randomize, randomize);
     cm.choice("--opponent", em.opponent, {"self", "baseline"}, kOpponentHelp, "DIR", opponentConfigProblem);
+    seedsOption(cm, em.seeds, "--games");
     cm.outputFile("--rows", em.rows, "one JSON line per game, appended as it ends; seeds already in FILE are not run again");
     EvalMotionOptions& w = o.evalWalk;
     w.seconds = 60;
@@ -464,6 +498,40 @@ void CommandLine::declare() {
     c.outputFile("--replay", k.replay,
                  "write the game's replay: one self-contained HTML page (the field from above, true and believed "
                  "poses, true and modelled balls, the referee's calls on a timeline)");
+  }
+  {
+    BatchOptions& b = o.batch;
+    Command& c = leaf(root, "batch",
+                      "an evaluation (eval challenge|match|localization and its options) split into chunks of seeds "
+                      "on a runner: processes here, GNU parallel (over ssh hosts too) or a Slurm job array; the "
+                      "chunks' rows merged into the evaluation's own aggregate",
+                      b.common);
+    c.json();
+    c.choice("--runner", b.runner, {"local", "parallel", "slurm"},
+             "local: processes on this machine; parallel: GNU parallel (--sshlogin spreads it over hosts); slurm: "
+             "one job array (sbatch; SLURM_CONF chooses the cluster, tools/slurm-local.sh makes one here)");
+    c.outputFolder("--dir", b.dir,
+                   "the batch's folder: its plan, one rows file and one log per chunk, the merged rows and aggregate "
+                   "(default batch-TARGET, e.g. batch-challenge)");
+    c.count("--chunk", b.chunk, 0, 100000,
+            "seeds per task (0: the evaluation's own, about a minute of work or more: 1 challenge or game, 4 "
+            "localization trials)");
+    c.count("--jobs", b.jobs, 0, 4096, "tasks at once for local and parallel (0: one per core)");
+    auto* ssh = c.text("--sshlogin", b.sshlogin, "HOSTS",
+                       "parallel: GNU parallel's --sshlogin (hosts with this program at the same path, the batch "
+                       "folder on a shared file system)",
+                       [](const std::string& s) { return s.empty() ? std::string("an empty host list") : std::string(); });
+    c.flag("--resume", b.resume, "continue the batch in --dir: only the seeds without a row run");
+    c.app()->allow_extras();
+    c.rule([&b, ssh] {
+      if (ssh->count() > 0 && b.runner != "parallel") return std::string("--sshlogin: only for --runner parallel");
+      return std::string();
+    });
+    c.rule([&b, app = c.app()] {
+      b.evalArgs = app->remaining();
+      checkBatchEval(b.evalArgs);
+      return std::string();
+    });
   }
   {
     ModulesOptions& m = o.modules;

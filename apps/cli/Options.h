@@ -1,6 +1,7 @@
 #pragma once
 // The values of every command's options, filled by the declarations in
 // apps/cli/Declarations.cpp (which hold their ranges, units and defaults).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -107,6 +108,7 @@ struct EvalLocalizationOptions {
   CommonOptions common;
   std::string lighting = "sweep", rows;
   int trials = 8, kidnapEvery = 4, rollEvery = 4;
+  std::vector<std::uint64_t> seeds;  // --seeds: exactly these trials
   double seconds = 20;
   bool randomize = false;
   DebugOptions debug;
@@ -116,6 +118,7 @@ struct EvalChallengeOptions {
   CommonOptions common;
   std::string lighting = "sweep", rows, model, venue = "none";
   int trials = 100;
+  std::vector<std::uint64_t> seeds;  // --seeds: exactly these trials
   double maxOffset = 3, timeLimit = 600;
   bool randomize = false, skipCalibration = false;
 };
@@ -185,9 +188,18 @@ struct MatchOptions {
 struct EvalMatchOptions {
   CommonOptions common;
   int games = 20;
+  std::vector<std::uint64_t> seeds;  // --seeds: exactly these games
   double halfSeconds = 300, seconds = 0;  // seconds 0: whole games
   bool randomize = false;
   std::string opponent = "baseline", lighting = "sweep", model, rows;
+};
+
+struct BatchOptions {
+  CommonOptions common;
+  std::string runner = "local", dir, sshlogin;
+  int chunk = 0, jobs = 0;  // 0: the evaluation's own chunk size; one job per core
+  bool resume = false;
+  std::vector<std::string> evalArgs;  // "eval", the target, its options (what batch did not take)
 };
 
 struct ModulesOptions {
@@ -217,6 +229,7 @@ struct Options {
   ChallengeCommandOptions challenge;
   MatchOptions match;
   ModulesOptions modules;
+  BatchOptions batch;
 };
 
 }  // namespace nao::cli
