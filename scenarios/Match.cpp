@@ -96,6 +96,24 @@ void checkSituation(const Situation& s, const FieldDimensions& f) {
     if (!onCarpet(s.balls[i].position)) throw Error("situation", "balls[" + std::to_string(i) + "]: off the carpet");
 }
 
+// Whether a ball in play lies in the view of one of robot r's cameras: the rules count looking
+// at a ball as activity (a robot waiting for the ball, facing it, is not inactive).
+bool looksAtABall(const World& world, int r, const std::array<bool, kBalls>& inPlay) {
+  const double halfY = world.cameraFovY() / 2;
+  for (const CameraId camera : {CameraId::Top, CameraId::Bottom}) {
+    const CameraResolution size = world.cameraResolution(camera);
+    const double halfX = std::atan(std::tan(halfY) * size.width / size.height);
+    const Eigen::Isometry3d toCamera = world.cameraPose(r, camera).inverse();
+    for (int i = 0; i < kBalls; ++i) {
+      if (!inPlay[static_cast<std::size_t>(i)]) continue;
+      const Eigen::Vector3d b = toCamera * world.ballPosition(i);
+      if (b.x() > 0.05 && std::abs(std::atan2(b.y(), b.x())) < halfX && std::abs(std::atan2(b.z(), b.x())) < halfY)
+        return true;
+    }
+  }
+  return false;
+}
+
 // A scripted robot's steps due at this cycle: its motion request, the push of a fall, a kick's
 // ball (the nearest ball in play within 0.35 m of the robot, given the step's velocity and
 // counted as this robot's touch).
@@ -376,7 +394,7 @@ MatchResult runMatch(const MatchOptions& o) {
         const Sample& a = p.recent[p.recent.size() - 10];
         const Sample& b = p.recent.back();
         truth.active = (b.pose - a.pose).head<2>().norm() > 0.05 || std::abs(Pose2::wrap(b.pose.z() - a.pose.z())) > 0.15 ||
-                       std::abs(b.headYaw - a.headYaw) > 0.1;
+                       std::abs(b.headYaw - a.headYaw) > 0.1 || looksAtABall(world, r, inPlay);
       }
       for (int i = 0; i < kBalls; ++i)
         for (bool left : {true, false})

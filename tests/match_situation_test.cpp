@@ -64,7 +64,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Expected{"ball_out_side.json", {"ball_out_side ball"}, {}, {}},
                       // A robot standing 0.2 m short of the halfway line, a fall with a get-up
                       // started at once, a slow ball still rolling in the own half: no call.
-                      Expected{"legal_play.json", {}, {}, {}, 1}),
+                      Expected{"legal_play.json", {}, {}, {}, 1},
+                      // Standing still 11.5 s facing a ball (it lies in the top camera's view):
+                      // looking at a ball is activity. inactive_robot.json has one behind it.
+                      Expected{"looking_at_ball.json", {}, {}, {}}),
     [](const ::testing::TestParamInfo<Expected>& param) {
       std::string name = param.param.file;
       return name.substr(0, name.find('.'));
