@@ -29,7 +29,7 @@ write_conf() {
   cat > "$conf" <<EOF
 # Written by tools/slurm-local.sh: one node, no cgroups, no accounting.
 ClusterName=nao-local
-SlurmctldHost=$node
+SlurmctldHost=$node(127.0.0.1)
 SlurmUser=slurm
 SlurmdUser=root
 AuthType=auth/munge
