@@ -149,14 +149,15 @@ TEST(BatchChunkRows, ACutShortLastLineIsMissingAnythingElseBadIsRefused) {
 
 class BatchRunners : public ::testing::Test {
  protected:
-  // One single-node Slurm for the suite, on ports and in a folder of its own.
+  // One single-node Slurm for the suite, on ports and in a folder of its own: ctest runs each
+  // test in a process of its own, several at once, and each starts its own Slurm.
   static void SetUpTestSuite() {
-    slurmDir_ = tempDir("slurm");
+    slurmDir_ = tempDir("slurm_" + std::to_string(::getpid()));
     if (::geteuid() != 0) {
       why_ = "the single-node Slurm needs root";
       return;
     }
-    const std::string env = "NAO_SLURM_DIR=" + slurmDir_.string() + " NAO_SLURM_PORT=" + std::to_string(17000 + ::getpid() % 1000);
+    const std::string env = "NAO_SLURM_DIR=" + slurmDir_.string() + " NAO_SLURM_PORT=" + std::to_string(20000 + (::getpid() % 10000) * 2);
     const std::string cmd = env + " " + NAO_SOURCE_DIR + "/tools/slurm-local.sh start > " + (slurmDir_ / "env").string() + " 2>&1";
     if (std::system(cmd.c_str()) != 0) {
       std::ifstream in(slurmDir_ / "env");
@@ -170,6 +171,7 @@ class BatchRunners : public ::testing::Test {
     if (!started_) return;
     const std::string cmd = "NAO_SLURM_DIR=" + slurmDir_.string() + " " + NAO_SOURCE_DIR + "/tools/slurm-local.sh stop 2>/dev/null";
     (void)std::system(cmd.c_str());
+    fs::remove_all(slurmDir_);
   }
   // Skips without a Slurm here, but fails in CI, which installs one (.ci/install-deps.sh).
   static bool needSlurm() {
