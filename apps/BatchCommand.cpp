@@ -15,6 +15,7 @@
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "robot/Error.h"
+#include "scenarios/EvalRows.h"
 
 namespace nao::cli {
 
@@ -45,17 +46,9 @@ class InterruptGuard {
 
 // The evaluation's seeds, as it would run them alone.
 std::vector<std::uint64_t> evalSeeds(const std::string& path, Options& o) {
-  const auto range = [](std::uint64_t first, int count) {
-    std::vector<std::uint64_t> s;
-    for (int i = 0; i < count; ++i) s.push_back(first + static_cast<std::uint64_t>(i));
-    return s;
-  };
-  if (path == "eval challenge")
-    return o.evalChallenge.seeds.empty() ? range(o.evalChallenge.common.seed, o.evalChallenge.trials) : o.evalChallenge.seeds;
-  if (path == "eval match")
-    return o.evalMatch.seeds.empty() ? range(o.evalMatch.common.seed, o.evalMatch.games) : o.evalMatch.seeds;
-  return o.evalLocalization.seeds.empty() ? range(o.evalLocalization.common.seed, o.evalLocalization.trials)
-                                          : o.evalLocalization.seeds;
+  if (path == "eval challenge") return sim::trialSeeds(o.evalChallenge.common.seed, o.evalChallenge.trials, o.evalChallenge.seeds, "--trials");
+  if (path == "eval match") return sim::trialSeeds(o.evalMatch.common.seed, o.evalMatch.games, o.evalMatch.seeds, "--games");
+  return sim::trialSeeds(o.evalLocalization.common.seed, o.evalLocalization.trials, o.evalLocalization.seeds, "--trials");
 }
 
 std::string chunkName(std::size_t k) {
@@ -135,8 +128,12 @@ int batchCommand(const BatchOptions& options) {
   const auto logFile = [&](std::size_t k) { return (dir / (chunkName(k) + ".log")).string(); };
   const auto missingSeeds = [&](std::size_t k) { return readChunkRows(rowsFile(k), chunks[k]).missing.size(); };
   // Every chunk file is read before anything runs: a bad one stops the batch here.
-  std::size_t done = 0;
-  for (std::size_t k = 0; k < chunks.size(); ++k) done += chunks[k].size() - missingSeeds(k);
+  const auto countDone = [&] {
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < chunks.size(); ++k) n += chunks[k].size() - missingSeeds(k);
+    return n;
+  };
+  std::size_t done = countDone();
   const std::size_t total = plan.seeds.size(), doneBefore = done;
 
   const std::string exe = fs::read_symlink("/proc/self/exe").string();
@@ -181,16 +178,14 @@ int batchCommand(const BatchOptions& options) {
         if (interrupted) {
           std::fprintf(stderr, "batch: interrupted: stopping the tasks\n");
           runner->cancel();
-          done = 0;
-          for (std::size_t k = 0; k < chunks.size(); ++k) done += chunks[k].size() - missingSeeds(k);
+          done = countDone();
           throw RunFailure("", "interrupted with " + std::to_string(done) + " of " + std::to_string(total) +
                                         " seeds done; --resume runs the others");
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(500));
         const auto now = std::chrono::steady_clock::now();
         if (now - lastPrint < std::chrono::seconds(5)) continue;
-        done = 0;
-        for (std::size_t k = 0; k < chunks.size(); ++k) done += chunks[k].size() - missingSeeds(k);
+        done = countDone();
         if (done == printed && now - lastPrint < std::chrono::seconds(60)) continue;
         const double elapsed = std::chrono::duration<double>(now - roundStart).count();
         const std::size_t newRows = done - roundBefore;
@@ -202,8 +197,7 @@ int batchCommand(const BatchOptions& options) {
     }
     const auto statuses = runner->exitStatuses();
     std::vector<std::size_t> failed;
-    done = 0;
-    for (std::size_t k = 0; k < chunks.size(); ++k) done += chunks[k].size() - missingSeeds(k);
+    done = countDone();
     for (const auto& t : tasks) {
       const auto missing = readChunkRows(rowsFile(t.chunk), chunks[t.chunk]).missing;
       if (missing.empty()) continue;
