@@ -3,6 +3,8 @@
 #include "apps/Cli.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
+#include "controllers/RobotProgram.h"
+#include "robot/OutputFiles.h"
 #include "scenarios/PerceptionEval.h"
 
 namespace nao::cli {
@@ -18,10 +20,24 @@ int evalPerceptionCommand(const EvalPerceptionOptions& options) {
   o.imagesEvery = options.imagesEvery;
   o.failuresDir = options.failures;
   o.progress = [](int done, int total) { progress("eval perception", done, total); };
+  o.percepts = options.percepts;
+  o.oracle = loadParams<modules::OracleVision::Params>("OracleVision", RobotProgramConfig::defaultConfigDir());
+  o.fitOracle = !options.fitOracle.empty();
   DebugSink debug(options.debug);
   o.debug = debug.channels();
   const sim::PerceptionEvalResult r = sim::evaluatePerception(o);
   nlohmann::json j = r.toJson();
+  j["percepts"] = o.percepts;
+  if (r.oracleFit) {
+    // The command that fitted the model, so that the file says where its figures come from.
+    char how[256];
+    std::snprintf(how, sizeof how, "nao-soccer eval perception --trials %d --seed %llu --lighting %s --max-offset %g",
+                  o.trials, static_cast<unsigned long long>(o.seed), options.lighting.c_str(), o.maxOffsetDeg);
+    const auto fitted = r.oracleFit->params(o.oracle, how);
+    io::writeFile(options.fitOracle, paramsToJson(fitted).dump(2) + "\n");
+    j["oracle_fit"]["params"] = paramsToJson(fitted);
+    j["oracle_fit"]["file"] = options.fitOracle;
+  }
   j["trials"] = o.trials;
   j["seed"] = o.seed;
   j["max_offset_deg"] = o.maxOffsetDeg;

@@ -25,6 +25,7 @@ int matchCommand(const MatchOptions& options) {
   o.halfSeconds = options.halfSeconds;
   o.seconds = options.seconds;
   o.opponent = options.opponent;
+  o.percepts = options.percepts;
   o.replay = !options.replay.empty();
   if (!options.situation.empty()) {
     o.situation = sim::loadSituation(options.situation, o.halfSeconds);
@@ -55,6 +56,7 @@ int evalMatchCommand(const EvalMatchOptions& options) {
   o.match.halfSeconds = options.halfSeconds;
   o.match.seconds = options.seconds;
   o.match.opponent = options.opponent;
+  o.match.percepts = options.percepts;
   checkRobotModel(o.match.robotModel, o.match.field);
   o.games = options.games;
   o.seed = options.common.seed;

@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace nao {
+
+struct OracleView;  // robot/OracleView.h
 
 enum class CameraId : int { Top = 0, Bottom = 1 };
 inline constexpr int kNumCameras = 2;
@@ -18,6 +21,8 @@ struct CameraImage {
   int height = 0;
   double timestamp = 0;            // s, backend clock, when the exposure was taken
   std::vector<std::uint8_t> yuyv;  // width * height * 2 bytes
+  // The simulator's fast percept mode only: what the camera truly shows instead of pixels.
+  std::shared_ptr<const OracleView> oracle;
 
   bool valid() const {
     return width > 0 && height > 0 && width % 2 == 0 &&

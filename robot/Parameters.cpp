@@ -89,6 +89,32 @@ void ParamReader::operator()(const char* key, std::string& value, std::initializ
   fail(key, "must be one of " + list + ", not '" + escapeControl(v).substr(0, 40) + "'");
 }
 
+void ParamReader::operator()(const char* key, std::string& value) {
+  const nlohmann::json* j = take(key);
+  if (!j) return;
+  if (!j->is_string()) fail(key, "must be a string");
+  const std::string v = j->get<std::string>();
+  if (v.size() > 2000) fail(key, "is longer than 2000 characters");
+  value = v;
+}
+
+void ParamReader::operator()(const char* key, std::vector<double>& values, double min, double max) {
+  const nlohmann::json* j = take(key);
+  if (!j) return;
+  if (!j->is_array() || j->empty() || j->size() > 64) fail(key, "must be a list of 1 to 64 numbers");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < j->size(); ++i) {
+    const nlohmann::json& e = (*j)[i];
+    const std::string at = std::string(key) + "[" + std::to_string(i) + "]";
+    if (!e.is_number()) fail(at, "must be a number");
+    const double v = e.get<double>();
+    if (!std::isfinite(v)) fail(at, "must be finite");
+    if (v < min || v > max) fail(at, number(v) + " is out of range [" + number(min) + ", " + number(max) + "]");
+    out.push_back(v);
+  }
+  values = std::move(out);
+}
+
 void ParamReader::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it)
     if (!seen_.count(it.key())) fail(it.key(), "unknown parameter");

@@ -21,6 +21,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -41,6 +42,10 @@ class ParamReader {
   void operator()(const char* key, bool& value);
   // A word from a fixed set (a solver's name, a source).
   void operator()(const char* key, std::string& value, std::initializer_list<const char*> choices);
+  // Free text (a note such as the command that fitted the figures): at most 2000 characters.
+  void operator()(const char* key, std::string& value);
+  // A list of 1 to 64 numbers, each in [min, max] (a table over distance bins).
+  void operator()(const char* key, std::vector<double>& values, double min, double max);
   template <class S>
   void operator()(const char* key, S& nested) {
     const nlohmann::json* j = take(key);
@@ -68,6 +73,8 @@ class ParamWriter {
   void operator()(const char* key, int& value, int, int) { json_[key] = value; }
   void operator()(const char* key, bool& value) { json_[key] = value; }
   void operator()(const char* key, std::string& value, std::initializer_list<const char*>) { json_[key] = value; }
+  void operator()(const char* key, std::string& value) { json_[key] = value; }
+  void operator()(const char* key, std::vector<double>& values, double, double) { json_[key] = values; }
   template <class S>
   void operator()(const char* key, S& nested) {
     ParamWriter inner;

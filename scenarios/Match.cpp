@@ -20,6 +20,7 @@
 #include "scenarios/RobotRules.h"
 #include "scenarios/WalkEval.h"
 #include "sim/CameraRenderer.h"
+#include "sim/OracleCamera.h"
 #include "sim/SimBackend.h"
 #include "sim/World.h"
 
@@ -185,7 +186,10 @@ MatchResult runMatch(const MatchOptions& o) {
     if (o.randomize) applyVariation(world, r, RobotVariation{}, o.seed * 2654435761ULL + 31 * static_cast<std::uint64_t>(r) + 7);
     world.placeRobot(r, spec.robots[static_cast<std::size_t>(r)], StandController::standPosture());
   }
-  CameraRenderer renderer(world.model());
+  const bool oracle = o.percepts == "oracle";
+  if (!oracle && o.percepts != "vision") throw Error("--percepts", "'" + o.percepts + "' is neither vision nor oracle");
+  std::optional<CameraRenderer> renderer;  // the fast percept mode renders nothing
+  if (!oracle) renderer.emplace(world.model());
   std::mt19937_64 noise(o.seed ^ 0x6a09e667f3bcc909ULL), toss(o.seed * 0x9e3779b97f4a7c15ULL + 11);
 
   GameControllerSim::Config gcConfig;
@@ -205,10 +209,12 @@ MatchResult runMatch(const MatchOptions& o) {
     const SituationRobot* sr = situation ? &situation->robots[static_cast<std::size_t>(r)] : nullptr;
     p.present = !sr || sr->present;
     p.scripted = sr && !sr->program;  // a prop of the referee's: its motion from the script, no cameras
-    if (!p.scripted)
+    if (!p.scripted && oracle)
+      p.backend->setImageSource([&world, r](CameraId cam, double) { return oracleImage(world, r, cam); });
+    else if (!p.scripted)
       p.backend->setImageSource([&world, &renderer, &o, &noise, r](CameraId cam, double time) {
         const CameraResolution res = world.cameraResolution(cam);
-        return renderer.renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width, res.height,
+        return renderer->renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width, res.height,
                                     o.lighting, cam, time, noise);
       });
     RobotProgramConfig config;
@@ -220,6 +226,7 @@ MatchResult runMatch(const MatchOptions& o) {
     } else if (r == 1 && o.opponent != "self") {
       config.configDir = o.opponent;
     }
+    if (oracle) config.providers["CameraPercepts"] = "OracleVision";
     p.program = std::make_unique<RobotProgram>(config);
     GameController::Config rc;
     rc.team = o.teams[static_cast<std::size_t>(r)];
@@ -540,6 +547,7 @@ MatchResult runMatch(const MatchOptions& o) {
                  {"rtf", result.wallSeconds > 0 ? result.simSeconds / result.wallSeconds : 0.0},
                  {"state", result.state},
                  {"opponent", o.opponent},
+                 {"percepts", o.percepts},
                  {"seed", o.seed}};
   if (o.replay) result.replay = replayData(f, frames, events);
   return result;

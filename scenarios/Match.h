@@ -34,6 +34,9 @@ struct MatchOptions {
   // baseline: to the ball, kick at the goal) or a configuration folder (modules.json, parameters/).
   std::string opponent = "self";
   bool replay = false;        // record MatchResult::replay (scenarios/MatchReplay.h)
+  // "vision": both cameras rendered and seen by the vision; "oracle": the fast percept mode
+  // (no rendering; OracleVision makes the percepts from the simulator's view, sim/OracleCamera.h).
+  std::string percepts = "vision";
   // A scripted situation instead of a game (scenarios/Situation.h): its state, clock, robots,
   // scripts and balls; no operator (no kick-off, no SET, no balls at SET); it runs its seconds.
   std::optional<Situation> situation;

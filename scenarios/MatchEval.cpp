@@ -35,6 +35,7 @@ nlohmann::json matchEvalSettings(const MatchEvalOptions& o) {
           {"half_s", o.match.halfSeconds},
           {"seconds", o.match.seconds},
           {"opponent", o.match.opponent},
+          {"percepts", o.match.percepts},
           {"lightings", lightings},
           {"robot_model", o.match.robotModel},
           {"field", {{"length", o.match.field.length}, {"width", o.match.field.width}}}};

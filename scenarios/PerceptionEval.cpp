@@ -13,11 +13,13 @@
 #include "perception/vision/Annotate.h"
 #include "perception/vision/CameraPipeline.h"
 #include "perception/vision/VisionPipeline.h"
+#include "robot/Error.h"
 #include "robot/OutputFiles.h"
 #include "robot/Paths.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
 #include "sim/ImageIO.h"
+#include "sim/OracleCamera.h"
 #include "sim/SceneBuilder.h"
 #include "sim/World.h"
 #include "scenarios/RandomView.h"
@@ -273,9 +275,131 @@ void scoreFrame(const World& world, CameraId camera, const FrameTruth& truth, co
   }
 }
 
+constexpr double kSmallBallPx = 8;  // radius below which a ball's error is fitted in pixels
+
+int binOf(const std::vector<double>& bins, double distance) {
+  for (std::size_t i = 0; i < bins.size(); ++i)
+    if (distance <= bins[i]) return static_cast<int>(i);
+  return -1;
+}
+
+// The distance of a pixel from the image line through a and b (pixels).
+double acrossPx(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const double n = d.norm();
+  return n < 1e-9 ? (p - a).norm() : std::abs((p - a).x() * d.y() - (p - a).y() * d.x()) / n;
+}
+
+// One frame's contribution to the oracle's fit: the oracle's view against what the vision found.
+void collectFit(const OracleView& view, const CameraMatrix& cm, const VisionResult& r, const PerceptionFigures& fig,
+                const modules::OracleVision::Params& model, OracleFit& fit) {
+  ++fit.frames;
+  fit.falseBalls += fig.falseBalls;
+  fit.falseLines += fig.detectedLines - fig.detectedLinesMatched;
+  fit.falseCircles += fig.circleFalse;
+  fit.falsePenaltyMarks += fig.penaltyMarks - fig.penaltyMarksCorrect;
+  for (const OracleView::Line& l : view.lines) {
+    const int bin = binOf(fit.bins, l.distance);
+    const auto ta = cm.pixelToGround(l.imageFrom), tb = cm.pixelToGround(l.imageTo);
+    if (l.length < model.lines.minLength || bin < 0 || !ta || !tb) continue;
+    OracleFit::Rate& rate = l.length >= model.lines.longLength ? fit.linesLong : fit.linesShort;
+    ++rate.seen[bin];
+    for (const auto& d : r.lines.lines)
+      if (lineMatches(d.from, d.to, *ta, *tb)) {
+        ++rate.found[bin];
+        for (const Eigen::Vector2d& end : {d.from, d.to})
+          if (const auto px = cm.projectGround(end)) fit.lineErrorPx.push_back(acrossPx(*px, l.imageFrom, l.imageTo));
+        break;
+      }
+  }
+  for (const OracleView::Ball& b : view.balls) {
+    const int bin = binOf(fit.bins, b.distance);
+    const auto truth = cm.pixelToGround(b.image, kBallRadius);
+    if (b.inImage < model.ball.minInImage || bin < 0 || !truth) continue;
+    ++fit.ball.seen[bin];
+    if (r.ball.seen && (r.ball.position - *truth).norm() < std::max(0.3, 0.2 * b.distance)) {
+      ++fit.ball.found[bin];
+      const double error = (r.ball.image - b.image).norm();
+      if (b.radiusPx >= kSmallBallPx)
+        fit.ballErrorPerRadius.push_back(error / b.radiusPx);
+      else
+        fit.ballErrorPxSmall.push_back(error);
+    }
+  }
+  auto spot = [&](const std::optional<OracleView::Spot>& s, const std::optional<Eigen::Vector2d>& found,
+                  OracleFit::Rate& rate, std::vector<double>& errors) {
+    if (!s) return;
+    const int bin = binOf(fit.bins, s->distance);
+    const auto truth = cm.pixelToGround(s->image);
+    if (bin < 0 || !truth) return;
+    ++rate.seen[bin];
+    if (found && (*found - *truth).norm() < 0.3) {
+      ++rate.found[bin];
+      errors.push_back((*found - *truth).norm());
+    }
+  };
+  spot(view.circleCentre, r.lines.circle.found ? std::optional<Eigen::Vector2d>(r.lines.circle.centre) : std::nullopt,
+       fit.circle, fit.circleErrorM);
+  spot(view.penaltyMark, r.lines.penaltyMark, fit.penaltyMark, fit.penaltyMarkErrorM);
+}
+
 }  // namespace
 
 double PerceptionFigures::medianBallErrorRatio() const { return median(ballErrorRatios); }
+
+OracleFit::OracleFit(std::vector<double> distanceBins) : bins(std::move(distanceBins)) {
+  for (Rate* r : {&ball, &linesLong, &linesShort, &circle, &penaltyMark}) {
+    r->seen.assign(bins.size(), 0);
+    r->found.assign(bins.size(), 0);
+  }
+}
+
+void OracleFit::add(const OracleFit& o) {
+  Rate* mine[] = {&ball, &linesLong, &linesShort, &circle, &penaltyMark};
+  const Rate* theirs[] = {&o.ball, &o.linesLong, &o.linesShort, &o.circle, &o.penaltyMark};
+  for (int k = 0; k < 5; ++k)
+    for (std::size_t i = 0; i < bins.size() && i < theirs[k]->seen.size(); ++i) {
+      mine[k]->seen[i] += theirs[k]->seen[i];
+      mine[k]->found[i] += theirs[k]->found[i];
+    }
+  for (auto [to, from] : {std::pair{&ballErrorPerRadius, &o.ballErrorPerRadius},
+                          std::pair{&ballErrorPxSmall, &o.ballErrorPxSmall}, std::pair{&lineErrorPx, &o.lineErrorPx},
+                          std::pair{&circleErrorM, &o.circleErrorM}, std::pair{&penaltyMarkErrorM, &o.penaltyMarkErrorM}})
+    to->insert(to->end(), from->begin(), from->end());
+  frames += o.frames, falseBalls += o.falseBalls, falseLines += o.falseLines;
+  falseCircles += o.falseCircles, falsePenaltyMarks += o.falsePenaltyMarks;
+}
+
+modules::OracleVision::Params OracleFit::params(const modules::OracleVision::Params& defaults,
+                                                const std::string& fittedBy) const {
+  modules::OracleVision::Params p = defaults;
+  p.fittedBy = fittedBy;
+  p.distanceBins = bins;
+  auto rates = [&](const Rate& r) {
+    std::vector<double> out(bins.size(), 0.0);
+    for (std::size_t i = 0; i < bins.size(); ++i)
+      out[i] = r.seen[i] > 0 ? static_cast<double>(r.found[i]) / r.seen[i] : i > 0 ? out[i - 1] : 0.0;
+    return out;
+  };
+  auto perFrame = [&](int n) { return frames ? static_cast<double>(n) / frames : 0.0; };
+  // Medians of error magnitudes to sigmas: a 2-D normal's |e| has median 1.1774 sigma, a
+  // 1-D one's 0.6745 sigma.
+  p.ball.detection = rates(ball);
+  if (!ballErrorPerRadius.empty()) p.ball.sigmaPerRadius = median(ballErrorPerRadius) / 1.1774;
+  if (!ballErrorPxSmall.empty()) p.ball.minSigmaPx = median(ballErrorPxSmall) / 1.1774;
+  p.ball.falsePerImage = perFrame(falseBalls);
+  p.lines.detection = rates(linesLong);
+  p.lines.detectionShort = rates(linesShort);
+  if (!lineErrorPx.empty()) p.lines.sigmaPx = median(lineErrorPx) / 0.6745;
+  p.lines.falsePerImage = perFrame(falseLines);
+  p.circle.detection = rates(circle);
+  if (!circleErrorM.empty()) p.circle.sigma = median(circleErrorM) / 1.1774;
+  p.circle.falsePerImage = perFrame(falseCircles);
+  p.penaltyMark.detection = rates(penaltyMark);
+  if (!penaltyMarkErrorM.empty()) p.penaltyMark.sigma = median(penaltyMarkErrorM) / 1.1774;
+  p.penaltyMark.falsePerImage = perFrame(falsePenaltyMarks);
+  return p;
+}
 
 void PerceptionFigures::add(const PerceptionFigures& o) {
   frames += o.frames;
@@ -342,6 +466,16 @@ nlohmann::json PerceptionEvalResult::toJson() const {
         {"ball.median_error_ratio", 100 * (d.medianBallErrorRatio() - b.medianBallErrorRatio())}};
   }
   j["perception_ms_median"] = median(perceptionMs);
+  if (oracleFit) {
+    nlohmann::json rates = nlohmann::json::object();
+    const std::pair<const char*, const OracleFit::Rate*> named[] = {{"ball", &oracleFit->ball},
+                                                                   {"lines_long", &oracleFit->linesLong},
+                                                                   {"lines_short", &oracleFit->linesShort},
+                                                                   {"circle", &oracleFit->circle},
+                                                                   {"penalty_mark", &oracleFit->penaltyMark}};
+    for (const auto& [name, rate] : named) rates[name] = {{"seen", rate->seen}, {"found", rate->found}};
+    j["oracle_fit"] = {{"distance_bins", oracleFit->bins}, {"frames", oracleFit->frames}, {"counts", rates}};
+  }
   return j;
 }
 
@@ -351,7 +485,9 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
   spec.robots = {Eigen::Vector3d::Zero()};
   spec.balls = {Eigen::Vector3d(0, 0, kBallRadius)};
   World world(spec, options.seed);
-  CameraRenderer renderer(world.model());
+  // The fast percept mode renders nothing.
+  std::optional<CameraRenderer> renderer;
+  if (options.percepts != "oracle") renderer.emplace(world.model());
   std::vector<Lighting> lightings = options.lightings;
   if (lightings.empty()) lightings.push_back(Lighting::parse("default", dataPath("config/lighting.json")));
 
@@ -369,6 +505,13 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
   CameraPipeline pipelines[kNumCameras] = {CameraPipeline(CameraId::Top, options.field, pipelineConfig),
                                            CameraPipeline(CameraId::Bottom, options.field, pipelineConfig)};
   const FieldModel& field = world.field();
+  const bool oracle = options.percepts == "oracle";
+  if (!oracle && options.percepts != "vision")
+    throw Error("PerceptionEvalOptions.percepts", "'" + options.percepts + "' is neither vision nor oracle");
+  if (const std::string problem = modules::OracleVision::check(options.oracle); !problem.empty())
+    throw Error("PerceptionEvalOptions.oracle", problem);
+  if (options.fitOracle && !oracle) result.oracleFit.emplace(options.oracle.distanceBins);
+  std::mt19937_64 oracleRng(options.seed ^ 0x5eed0f0cac1eULL);
   std::mt19937_64 rng(options.seed);
   std::uniform_real_distribution<double> uni(0, 1);
   auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * uni(rng); };
@@ -413,18 +556,31 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
       const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
       const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in);
       const FrameTruth truth = computeTruth(world, camera);
+      const OracleView sight = oracleView(world, 0, camera);
       for (const Lighting& lighting : lightings) {
-        std::mt19937_64 noiseRng(options.seed * 1000003 + trial * 17 + static_cast<int>(camera));
-        const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera),
-                                                     res.width, res.height, lighting, camera, 0, noiseRng);
-        CameraPipeline& pipeline = pipelines[static_cast<int>(camera)];
-        pipeline.process(img, cm);
-        const VisionResult r = pipeline.visionResult();
-        result.perceptionMs.push_back(pipeline.totalMs());
+        VisionResult r;
+        CameraImage img;
+        if (oracle) {
+          const CameraPercepts p = modules::OracleVision::perceive(sight, cm, options.oracle,
+                                                                   options.field.centerCircleDiameter / 2, oracleRng);
+          r.lines = p.linesPercept();
+          r.ball = p.ball;
+          r.penaltyMarkImage = p.penaltyMarkImage;
+        } else {
+          std::mt19937_64 noiseRng(options.seed * 1000003 + trial * 17 + static_cast<int>(camera));
+          img = renderer->renderImage(world.model(), world.data(), world.cameraIndex(0, camera), res.width, res.height,
+                                     lighting, camera, 0, noiseRng);
+          CameraPipeline& pipeline = pipelines[static_cast<int>(camera)];
+          pipeline.process(img, cm);
+          r = pipeline.visionResult();
+          result.perceptionMs.push_back(pipeline.totalMs());
+        }
         PerceptionFigures fig;
         scoreFrame(world, camera, truth, r, robotPose, fig, {debug, trial, lighting.name});
         result.byLighting[lighting.name].add(fig);
         result.all.add(fig);
+        if (result.oracleFit) collectFit(sight, cm, r, fig, options.oracle, *result.oracleFit);
+        if (oracle) continue;  // no pixels to draw
         if (!options.imagesDir.empty() && options.imagesEvery > 0 && trial % options.imagesEvery == 0) {
           const cv::Mat annotated = annotateVision(rgbFromCameraImage(img), r, cm, camera == CameraId::Bottom ? 2 : 1);
           char name[160];

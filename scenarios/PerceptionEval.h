@@ -15,11 +15,13 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "controllers/modules/OracleVision.h"
 #include "perception/FieldDimensions.h"
 #include "robot/Debug.h"
 #include "sim/Lighting.h"
@@ -38,6 +40,34 @@ struct PerceptionEvalOptions {
   std::string failuresDir;          // non-empty: annotated frames with a miss or a false detection
   DebugChannels* debug = nullptr;   // line_rejects, eval_lines, eval_balls, timing (not owned); null: none
   std::function<void(int done, int total)> progress;
+  // "vision": render and run the camera pipeline; "oracle": no rendering, the fast percept
+  // mode's OracleVision with `oracle` as its error model (what the test compares).
+  std::string percepts = "vision";
+  modules::OracleVision::Params oracle;
+  bool fitOracle = false;  // collect OracleFit (fitting needs the vision)
+};
+
+// What the fast percept mode's error model is fitted from: per distance bin (the oracle's
+// bins), how many of the features the oracle would offer the vision found, how far off it
+// was, and its false percepts. The truth here is the oracle's own view of each frame
+// (sim/OracleCamera.h), so the rates fit exactly what the oracle draws from.
+struct OracleFit {
+  std::vector<double> bins;
+  struct Rate {
+    std::vector<int> seen, found;
+  };
+  Rate ball, linesLong, linesShort, circle, penaltyMark;
+  // |pixel error| of the found balls: over the radius for near (large) balls, in pixels for
+  // far (small) ones, where the pixel grid bounds the error.
+  std::vector<double> ballErrorPerRadius, ballErrorPxSmall;
+  std::vector<double> lineErrorPx;         // ends of the found lines, across the true line
+  std::vector<double> circleErrorM, penaltyMarkErrorM;
+  int frames = 0, falseBalls = 0, falseLines = 0, falseCircles = 0, falsePenaltyMarks = 0;
+
+  explicit OracleFit(std::vector<double> distanceBins = {});
+  void add(const OracleFit& o);
+  // The error model these figures give (empty bins take the bin before's rate).
+  modules::OracleVision::Params params(const modules::OracleVision::Params& defaults, const std::string& fittedBy) const;
 };
 
 struct PerceptionFigures {
@@ -67,6 +97,7 @@ struct PerceptionEvalResult {
   std::map<std::string, PerceptionFigures> byLighting;
   std::vector<std::string> lightingOrder;
   std::vector<double> perceptionMs;  // the camera pipeline's total per frame
+  std::optional<OracleFit> oracleFit;  // with fitOracle
   nlohmann::json toJson() const;
 };
 

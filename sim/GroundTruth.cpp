@@ -99,6 +99,15 @@ std::optional<VisibleLine> visibleStretch(const World& world, int robot, CameraI
   return v;
 }
 
+bool ballVisible(const World& world, int robot, CameraId camera, int ball, double maxDistance) {
+  const Eigen::Vector3d centre = world.ballPosition(ball);
+  const Eigen::Vector3d eye = world.cameraPose(robot, camera).translation();
+  const std::string body = "ball" + std::to_string(ball);
+  const Eigen::Vector3d towardCamera = centre + kBallRadius * (eye - centre).normalized();
+  return visibleImpl(world, robot, camera, centre, maxDistance, body) ||
+         visibleImpl(world, robot, camera, towardCamera, maxDistance, body);
+}
+
 VisibleFeatures visibleFeatures(const World& world, int robot, CameraId camera, double maxDistance) {
   VisibleFeatures out;
   const FieldModel& field = world.field();
@@ -124,12 +133,7 @@ VisibleFeatures visibleFeatures(const World& world, int robot, CameraId camera, 
   const double f = (res.height / 2.0) / std::tan(world.cameraFovY() / 2);
   for (int b = 0; b < world.ballCount(); ++b) {
     const Eigen::Vector3d centre = world.ballPosition(b);
-    // The ball counts as visible when its centre or the point nearest the camera is unhidden.
-    const std::string ball = "ball" + std::to_string(b);
-    const Eigen::Vector3d towardCamera = centre + kBallRadius * (cam.translation() - centre).normalized();
-    if (!visibleImpl(world, robot, camera, centre, maxDistance, ball) &&
-        !visibleImpl(world, robot, camera, towardCamera, maxDistance, ball))
-      continue;
+    if (!ballVisible(world, robot, camera, b, maxDistance)) continue;
     const auto px = truePixel(world, robot, camera, centre);
     if (!px) continue;
     VisibleBall v;

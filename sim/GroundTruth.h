@@ -52,6 +52,9 @@ std::optional<Eigen::Vector2d> truePixel(const World& world, int robot, CameraId
 bool trulyVisible(const World& world, int robot, CameraId camera, const Eigen::Vector3d& pField,
                   double maxDistance = 1e9);
 
+// Whether ball `ball` is in the image and unhidden: its centre or its point nearest the camera.
+bool ballVisible(const World& world, int robot, CameraId camera, int ball, double maxDistance = 1e9);
+
 // The visible stretch of field line `index`: the longest run of its centre's 2 cm samples
 // that are truly visible. With wholePaintWidth a sample also needs both edges of the paint
 // across the line inside the image: where the border cuts the paint lengthwise, what is left

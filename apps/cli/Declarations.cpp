@@ -133,6 +133,10 @@ void debugOptions(Command& c, DebugOptions& d) {
 
 // --cameras files:DIR: DIR/top/ and DIR/bottom/ each hold PNG or JPEG images; socket:PATH: a
 // Unix socket path (it may appear later: the cameras wait for it).
+const std::string kPerceptsHelp =
+    "vision (both cameras rendered, the camera pipeline) or oracle (the fast percept mode: no rendering, percepts "
+    "from the simulator's view with the vision's fitted errors, config/parameters/OracleVision.json)";
+
 // --opponent's other value: a robot program configuration folder.
 std::string opponentConfigProblem(const std::string& dir) {
   std::error_code ec;
@@ -314,6 +318,16 @@ void CommandLine::declare() {
     c.outputFolder("--images", p.images, "write annotated frames to DIR");
     c.count("--images-every", p.imagesEvery, 1, 10000, "annotate every N-th scene")->needs("--images");
     c.outputFolder("--failures", p.failures, "write frames with a miss or a false detection to DIR");
+    c.choice("--percepts", p.percepts, {"vision", "oracle"},
+             "vision (render, run the camera pipeline) or oracle (the fast percept mode's error model, "
+             "config/parameters/OracleVision.json; no rendering)");
+    c.outputFile("--fit-oracle", p.fitOracle,
+                 "fit the fast percept mode's error model to the vision's figures and write it (the format of "
+                 "config/parameters/OracleVision.json)");
+    c.rule([&p] {
+      return p.percepts == "oracle" && !p.fitOracle.empty() ? "--fit-oracle: fits the vision, not with --percepts oracle"
+                                                            : std::string();
+    });
     debugOptions(c, p.debug);
 
     EvalCalibrationOptions& k = o.evalCalibration;
@@ -377,6 +391,7 @@ void CommandLine::declare() {
     cm.number("--seconds", em.seconds, 1, 7200, "s", "stop each game after this much simulated time (unless given: whole games)");
     cm.flag("--randomize", em.randomize, randomize);
     cm.choice("--opponent", em.opponent, {"self", "baseline"}, kOpponentHelp, "DIR", opponentConfigProblem);
+    cm.choice("--percepts", em.percepts, {"vision", "oracle"}, kPerceptsHelp);
     seedsOption(cm, em.seeds, "--games");
     cm.outputFile("--rows", em.rows, "one JSON line per game, appended as it ends; seeds already in FILE are not run again");
     EvalMotionOptions& w = o.evalWalk;
@@ -492,6 +507,7 @@ void CommandLine::declare() {
     c.number("--half", k.halfSeconds, 10, 600, "s", "the length of a half (the rules' 5 min)");
     c.flag("--randomize", k.randomize, "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0");
     c.choice("--opponent", k.opponent, {"self", "baseline"}, kOpponentHelp, "DIR", opponentConfigProblem);
+    c.choice("--percepts", k.percepts, {"vision", "oracle"}, kPerceptsHelp);
     c.inputFile("--situation", k.situation,
                 "play a scripted situation instead of a game (JSON: the GameController's state and clock, robots "
                 "placed and scripted or running their program, balls placed or kicked; docs/match/README.md)");

@@ -92,6 +92,7 @@ struct PerceiveOptions {
 struct EvalPerceptionOptions {
   CommonOptions common;
   std::string lighting = "sweep", images, failures;
+  std::string percepts = "vision", fitOracle;  // --percepts, --fit-oracle FILE
   int trials = 300, imagesEvery = 25;
   double maxOffset = 1;
   DebugOptions debug;
@@ -183,6 +184,7 @@ struct MatchOptions {
   double halfSeconds = 300;
   bool randomize = false;
   std::string opponent = "self", replay, situation;
+  std::string percepts = "vision";
 };
 
 struct EvalMatchOptions {
@@ -192,6 +194,7 @@ struct EvalMatchOptions {
   double halfSeconds = 300, seconds = 0;  // seconds 0: whole games
   bool randomize = false;
   std::string opponent = "baseline", lighting = "sweep", model, rows;
+  std::string percepts = "vision";
 };
 
 struct BatchOptions {

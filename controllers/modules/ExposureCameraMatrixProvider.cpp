@@ -11,7 +11,8 @@ void ExposureCameraMatrixProvider::update() {
   out.timestamp = image.timestamp;
   JointArray joints{};
   Eigen::Isometry3d robotToTorso = Eigen::Isometry3d::Identity();
-  out.valid = image.valid() && in<FrameHistory>().at(image.timestamp, joints, robotToTorso);
+  // The image's size is enough: the fast percept mode's images have no pixels.
+  out.valid = image.width > 0 && image.height > 0 && in<FrameHistory>().at(image.timestamp, joints, robotToTorso);
   if (!out.valid) return;
   out.matrix = computeCameraMatrix(joints, robotToTorso, image.camera, in<CameraCalibration>(),
                                    CameraIntrinsics::fromFovY(image.width, image.height));
