@@ -65,6 +65,7 @@ RobotProgram::RobotProgram(const RobotProgramConfig& config) {
   if (config.calibrator) context.params["Calibrator"] = *config.calibrator;
   if (config.behavior) context.params["BehaviorControl"] = *config.behavior;
   if (config.field) context.params[modules::kFieldParams] = *config.field;
+  context.seed = config.seed;
   context.params["CameraCalibrationProvider"] = config.calibration;
   context.debug = debug_ = config.debug;
   motion_.setDebug(config.debug, "motion");

@@ -61,6 +61,8 @@ struct RobotProgramConfig {
   // Debug channels for every module and the pipelines' timing (not owned; must outlive the
   // program); null: none. The program sets their time to each cycle's and image's.
   DebugChannels* debug = nullptr;
+  // The run's seed for modules that draw random numbers (ModuleContext::seed).
+  std::uint64_t seed = 0;
 
   static std::string defaultConfigDir();
   // For a scenario that drives the robot itself: no behaviour module provides the motion and

@@ -16,6 +16,7 @@
 // The same list reads (ParamReader) and writes (ParamWriter) the file, so the committed files
 // can be checked against the defaults.
 #include <any>
+#include <cstdint>
 #include <map>
 #include <initializer_list>
 #include <optional>
@@ -137,6 +138,9 @@ struct ModuleContext {
   // The program's debug channels (not owned; null: none): createModule attaches them to the
   // module, and a module that owns helpers or pipelines of its own hands them on.
   DebugChannels* debug = nullptr;
+  // Seeds the random draws of a module that makes any (the fast percept mode's OracleVision):
+  // the run's seed, so that the same seed gives the same run and another seed another one.
+  std::uint64_t seed = 0;
 
   template <class P>
   P load(const std::string& module) const {

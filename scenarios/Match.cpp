@@ -227,6 +227,7 @@ MatchResult runMatch(const MatchOptions& o) {
       config.configDir = o.opponent;
     }
     if (oracle) config.providers["CameraPercepts"] = "OracleVision";
+    config.seed = o.seed * 2 + static_cast<std::uint64_t>(r);
     p.program = std::make_unique<RobotProgram>(config);
     GameController::Config rc;
     rc.team = o.teams[static_cast<std::size_t>(r)];
@@ -244,6 +245,11 @@ MatchResult runMatch(const MatchOptions& o) {
   std::array<bool, kBalls> inPlay{};
   std::array<double, kBalls> lastSide{};  // each ball's half (sign of x), 0 on the line
   double lastCrossing = 0, stateSince = 0;
+  // Substantial change (global game stuck's 30 s rule): a ball touched, or one moved 0.5 m from
+  // where it lay at the last change.
+  double lastChange = 0;
+  std::array<Eigen::Vector2d, kBalls> changeAnchor{};
+  bool anchored = false;
   gc::State lastState = gc.state();
   std::size_t gcEvents = 0;
   double nextProgress = 0;
@@ -333,7 +339,7 @@ MatchResult runMatch(const MatchOptions& o) {
       lastState = gc.state();
       stateSince = t;
       if (lastState == gc::State::Set && !situation) placeBalls();
-      if (lastState == gc::State::Playing) lastCrossing = t;
+      if (lastState == gc::State::Playing) lastCrossing = lastChange = t, anchored = false;
       if (lastState == gc::State::Finished && gc.firstHalf() && !gc.finished()) {
         // Half time: the sides switch; the robots stand at their new starts, the balls are taken off.
         homeNegative = false;
@@ -460,9 +466,23 @@ MatchResult runMatch(const MatchOptions& o) {
         event({{"kind", "place"}, {"what", "ball"}, {"ball", c.ball}, {"at", {c.replaceAt->x(), c.replaceAt->y()}}});
       }
     }
-    // Global game stuck: no ball from one half to the other for a minute.
-    if (gc.state() == gc::State::Playing && t - lastCrossing >= 60) {
-      event({{"kind", "call"}, {"rule", "global_game_stuck"}, {"evidence", "no ball crossed the halfway line for 60 s"}});
+    // Global game stuck: no substantial change for 30 s (no ball touched or moved 0.5 m), or no
+    // ball from one half to the other for a minute.
+    bool changed = !touches.empty() || !anchored;
+    for (int i = 0; i < kBalls && !changed; ++i)
+      changed = inPlay[static_cast<std::size_t>(i)] &&
+                (world.ballPosition(i).head<2>() - changeAnchor[static_cast<std::size_t>(i)]).norm() >= 0.5;
+    if (changed) {
+      lastChange = t;
+      anchored = true;
+      for (int i = 0; i < kBalls; ++i) changeAnchor[static_cast<std::size_t>(i)] = world.ballPosition(i).head<2>();
+    }
+    const char* stuck = gc.state() != gc::State::Playing ? nullptr
+                        : t - lastChange >= 30         ? "no substantial change for 30 s: no ball touched or moved 0.5 m"
+                        : t - lastCrossing >= 60       ? "no ball crossed the halfway line for 60 s"
+                                                       : nullptr;
+    if (stuck) {
+      event({{"kind", "call"}, {"rule", "global_game_stuck"}, {"evidence", stuck}});
       gc.globalGameStuck(t);
       lastState = gc.state();
       stateSince = t;

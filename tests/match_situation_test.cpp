@@ -62,6 +62,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Expected{"ball_in_half.json", {}, {"home ball_in_half"}, {}},
                       Expected{"intercepted.json", {}, {}, {"intercepted home"}},
                       Expected{"ball_out_side.json", {"ball_out_side ball"}, {}, {}},
+                      // Two balls lying, one nudged at 1 s: 30 s without a ball touched or moved
+                      // 0.5 m; balls played in their halves every 20 s, none across: a minute.
+                      Expected{"game_stuck_no_change.json", {"global_game_stuck ball"}, {}, {}},
+                      Expected{"game_stuck_no_crossing.json", {"global_game_stuck ball"}, {}, {}},
                       // A robot standing 0.2 m short of the halfway line, a fall with a get-up
                       // started at once, a slow ball still rolling in the own half: no call.
                       Expected{"legal_play.json", {}, {}, {}, 1},

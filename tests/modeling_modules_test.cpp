@@ -18,6 +18,7 @@
 #include "perception/OwnBody.h"
 #include "perception/calibration/CalibrationViews.h"
 #include "representations/behavior/CalibrationRequest.h"
+#include "representations/modeling/BallTracks.h"
 #include "representations/modeling/FieldBalls.h"
 #include "representations/perception/CalibrationStatus.h"
 #include "robot/Paths.h"
@@ -263,7 +264,7 @@ struct BehaviorFixture {
     pose.valid = true;
     pose.covariance = Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
     h.fix(BallModel{}).fix(GameState{}).fix(FallState{}).fix(MotionInfo{}).fix(historyAt(1, Pose2())).fix(ChallengeMode{})
-        .fix(CameraCalibration{}).fix(CalibrationStatus{}).fix(CameraPercepts{}).fix(FieldBalls{});
+        .fix(CameraCalibration{}).fix(CalibrationStatus{}).fix(CameraPercepts{}).fix(FieldBalls{}).fix(BallTracks{});
   }
   void run(const RobotPose& p, const BehaviorCommand& c) { h.fix(p).fix(c).run(); }
 };

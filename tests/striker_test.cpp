@@ -95,28 +95,79 @@ TEST(Striker, SearchesWithoutABallThenWalksBehindItAndKicks) {
   EXPECT_EQ(m.motion, MotionType::Kick);
   EXPECT_EQ(m.kickId, id);
   i.motion.kickDone = true;
+  i.ball.rolling = true;  // on its way to the other half
+  i.ball.fieldEndPosition = {2.0, 0.3};
   i.time += 0.5;
   s.run(i.in(), m);
   EXPECT_NE(s.state(), Striker::State::Kick);
   EXPECT_EQ(s.kicks(), 1);
 }
 
-TEST(Striker, WaitsShortOfTheHalfwayLineWhenTheBallIsOutOfReach) {
+TEST(Striker, ScansTheOwnHalfWhenNoKnownBallIsInReach) {
   Striker s(nao::FieldDimensions{}, {});
   Inputs i;
   nao::MotionRequest m;
+  // In the other half, or too near the halfway line to kick without touching it.
   for (const Eigen::Vector2d& ball : {Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(-0.1, 0)}) {
-    i.place(Pose2(-2, 0, 0), ball);
+    i.place(Pose2(-1, 1, 0), ball);
     s.run(i.in(), m);
     EXPECT_EQ(s.state(), Striker::State::Wait) << ball.transpose();
-    ASSERT_EQ(m.motion, MotionType::WalkTo);
-    EXPECT_LE(m.walkTarget.x, -0.5);
+    ASSERT_EQ(m.motion, MotionType::WalkTo);  // to the middle of the own half ...
+    EXPECT_NEAR(m.walkTarget.x, -1.8, 1e-9);
+    EXPECT_NEAR(m.walkTarget.y, 0, 1e-9);
   }
-  // A ball a little further back can be played: the kick pose stays 0.25 m short of the line.
+  i.place(Pose2(-1.8, 0.1, 0), {1.0, 1.0});
+  s.run(i.in(), m);
+  EXPECT_EQ(m.motion, MotionType::Walk);  // ... and there it turns, looking over the own half
+  EXPECT_GT(m.walkSpeed.theta, 0);
+  EXPECT_EQ(m.walkSpeed.x, 0);
+  // A ball a little further back can be played: the kick pose stays 0.3 m short of the line.
   i.place(Pose2(-2, 0, 0), {-0.3, 0});
   s.run(i.in(), m);
   EXPECT_EQ(s.state(), Striker::State::Approach);
-  EXPECT_LE(m.walkTarget.x, -0.025 - 0.25);
+  EXPECT_LE(m.walkTarget.x, -0.025 - 0.3);
+  // A walk that overshot towards the line: whatever it wanted, it steps back first (field -x,
+  // facing sideways here).
+  i.place(Pose2(-0.25, 0, M_PI / 2), {-0.4, 0.2});
+  s.run(i.in(), m);
+  ASSERT_EQ(m.motion, MotionType::Walk);
+  EXPECT_NEAR(m.walkSpeed.x, 0, 1e-9);
+  EXPECT_GT(m.walkSpeed.y, 0);  // its left is field -x
+}
+
+// Four balls known (the tracks the BallTracker keeps): the nearest one in reach is the one, and
+// the choice holds until another is clearly nearer; balls off the field do not count.
+TEST(Striker, ChoosesTheNearestBallInReachAndKeepsItsChoice) {
+  Striker s(nao::FieldDimensions{}, {});
+  Inputs i;
+  nao::MotionRequest m;
+  i.pose.pose = i.pose.odometry = Pose2(-2.5, -1.0, M_PI);
+  nao::BallTracks balls;
+  for (const Eigen::Vector2d& at : {Eigen::Vector2d(-3.9, -1.1), Eigen::Vector2d(-3.9, 1.1), Eigen::Vector2d(3.9, -1.1),
+                                    Eigen::Vector2d(-2.5, -3.5)}) {
+    nao::BallTracks::Track t;
+    t.position = at;
+    balls.tracks.push_back(t);
+  }
+  s.run(i.in(), balls, m);
+  EXPECT_EQ(s.state(), Striker::State::Approach);
+  ASSERT_TRUE(s.lookAt());  // the ball model follows none: the head looks at the chosen one
+  const Eigen::Vector2d chosen = i.pose.pose * *s.lookAt();
+  EXPECT_LT((chosen - Eigen::Vector2d(-3.9, -1.1)).norm(), 1e-9);
+  // Coming from in front of it: round it, by a point behind it (further from the goal it attacks).
+  ASSERT_EQ(m.motion, MotionType::WalkTo);
+  EXPECT_LT(m.walkTarget.x, -3.9);
+  // Half-way to the other own-half ball the choice holds (the other is nearer, not clearly).
+  i.pose.pose = i.pose.odometry = Pose2(-3.0, 0.1, M_PI);
+  s.run(i.in(), balls, m);
+  EXPECT_LT((i.pose.pose * *s.lookAt() - Eigen::Vector2d(-3.9, -1.1)).norm(), 1e-9);
+  i.pose.pose = i.pose.odometry = Pose2(-3.0, 0.8, M_PI);
+  s.run(i.in(), balls, m);
+  EXPECT_LT((i.pose.pose * *s.lookAt() - Eigen::Vector2d(-3.9, 1.1)).norm(), 1e-9);
+  // Only balls out of reach or off the field: it scans.
+  balls.tracks.erase(balls.tracks.begin(), balls.tracks.begin() + 2);
+  s.run(i.in(), balls, m);
+  EXPECT_EQ(s.state(), Striker::State::Wait);
 }
 
 // The baseline walks to the ball wherever it lies, the other half too, and kicks it at the goal's

@@ -113,8 +113,16 @@ void BehaviorControl::update() {
     else head = c.head;
     if (!c.report.empty()) report_.start(c.report, input.time);
   } else if (playing) {
-    striker_->run(input, motion);
+    striker_->run(input, in<BallTracks>(), motion);
     look_->run(input, head);
+    if (const auto& at = striker_->lookAt()) {
+      // The chosen ball, which the ball model does not follow (yet): look at it.
+      head = HeadMotionRequest{};
+      head.mode = HeadMotionRequest::Mode::LookAtRobotPoint;
+      head.point = Eigen::Vector3d(at->x(), at->y(), 0.05);
+      head.camera = at->norm() < params_.look.bottomCameraDistance ? CameraId::Bottom : CameraId::Top;
+      head.maxSpeed = params_.look.maxHeadSpeed;
+    }
   } else {
     if (input.command.goTo) goTo_.run(input, *input.command.goTo, motion);
     else motion = MotionRequest{};  // stand

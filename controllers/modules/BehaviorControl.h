@@ -26,6 +26,7 @@
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameState.h"
 #include "representations/modeling/BallModel.h"
+#include "representations/modeling/BallTracks.h"
 #include "representations/modeling/FieldBalls.h"
 #include "representations/modeling/RobotPose.h"
 #include "representations/motion/MotionInfo.h"
@@ -41,7 +42,7 @@ namespace nao::modules {
 class BehaviorControl
     : public Module<BehaviorControl,
                     Requires<RobotPose, BallModel, GameState, FallState, MotionInfo, BehaviorCommand, FrameHistory,
-                             ChallengeMode, CameraCalibration, CameraPercepts, FieldBalls,
+                             ChallengeMode, CameraCalibration, CameraPercepts, FieldBalls, BallTracks,
                              Previous<CalibrationStatus>>,
                     Provides<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationRequest>,
                     Cadence::Cognition> {

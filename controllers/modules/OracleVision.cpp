@@ -62,7 +62,7 @@ std::string OracleVision::check(const Params& p) {
 
 OracleVision::OracleVision(const ModuleContext& context)
     : params_(context.load<Params>(name())), circleRadius_(fieldFor(context).centerCircleDiameter / 2),
-      rng_(0x0cac1e5eedULL ^ std::hash<std::string>{}(context.headId)) {
+      rng_(context.seed * 0x9e3779b97f4a7c15ULL ^ std::hash<std::string>{}(context.headId) ^ 0x0cac1e5eedULL) {
   if (const std::string problem = check(params_); !problem.empty())
     throw Error(context.configDir.empty() ? std::string(name()) : parameterFile(context.configDir, name()), problem);
 }

@@ -63,7 +63,7 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BehaviorControl", "ButtonStateProvider", "Calibrator",
+  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BallTracker", "BehaviorControl", "ButtonStateProvider", "Calibrator",
                                      "CameraCalibrationProvider",
                                      "CameraMatrixProvider",
                                      "CameraVision", "ChallengeModeProvider", "ExposureCameraMatrixProvider", "FallDetector", "FieldBallLocator",
@@ -119,8 +119,8 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
                    "ChallengeModeProvider",
                    "FallDetector", "HeadControl",
                    "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
-                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "FieldBallLocator", "BehaviorControl",
-                   "Calibrator"}));
+                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BallTracker", "FieldBallLocator",
+                   "BehaviorControl", "Calibrator"}));
 }
 
 TEST(RobotProgram, AProviderRemovedByConfigurationBecomesAnInput) {

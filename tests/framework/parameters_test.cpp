@@ -9,6 +9,7 @@
 #include <string>
 
 #include "controllers/modules/BallLocator.h"
+#include "controllers/modules/BallTracker.h"
 #include "controllers/modules/BehaviorControl.h"
 #include "controllers/modules/FallDetector.h"
 #include "controllers/modules/HeadControl.h"
@@ -140,6 +141,7 @@ TEST(Parameters, CommittedFilesHoldTodaysDefaults) {
   same("SelfLocalization", paramsToJson(modules::SelfLocalization::Params{}));
   same("BallLocator", paramsToJson(modules::BallLocator::Params{}));
   same("BehaviorControl", paramsToJson(modules::BehaviorControl::Params{}));
+  same("BallTracker", paramsToJson(modules::BallTracker::Params{}));
   same("OwnBodyProvider", paramsToJson(OwnBodyParams{}));
   // And they load without complaint to the same values.
   const auto m = loadParams<MotionEngine::Params>("MotionEngine", dir);
