@@ -1,5 +1,5 @@
 // libFuzzer target: the module parameter loader (robot/Parameters.h) on the motion engine's,
-// head control's and the fall detector's Params. Any input must either load or throw
+// head control's, the fall detector's and the oracle vision's Params (lists of numbers, text). Any input must either load or throw
 // nao::Error with a one-line message; anything else (a crash, another exception, a sanitizer
 // report, a loaded value that is not finite) is a finding.
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "controllers/modules/FallDetector.h"
 #include "controllers/modules/HeadControl.h"
 #include "controllers/modules/MotionEngineParams.h"
+#include "controllers/modules/OracleVision.h"
 #include "robot/Error.h"
 #include "robot/Parameters.h"
 
@@ -18,7 +19,7 @@ namespace {
 // Every number a loaded struct holds must be finite (the writer walks the same fields).
 void checkFinite(const nlohmann::ordered_json& j) {
   for (const auto& v : j) {
-    if (v.is_object()) checkFinite(v);
+    if (v.is_object() || v.is_array()) checkFinite(v);
     else if (v.is_number_float() && !std::isfinite(v.get<double>())) std::abort();
   }
 }
@@ -41,5 +42,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   load<nao::MotionEngine::Params>(text);
   load<nao::HeadControl::Params>(text);
   load<nao::FallDetector::Params>(text);
+  load<nao::modules::OracleVision::Params>(text);
   return 0;
 }
