@@ -94,6 +94,20 @@ TEST(Striker, SearchesWithoutABallThenWalksBehindItAndKicks) {
   s.run(i.in(), m);
   EXPECT_EQ(m.motion, MotionType::Kick);
   EXPECT_EQ(m.kickId, id);
+  // Nudged towards the halfway line while the engine walked: too near it to kick now.
+  {
+    Striker near(nao::FieldDimensions{}, {});
+    Inputs k;
+    nao::MotionRequest mk;
+    k.place(Pose2(-0.5, 0.0, 0.0), {-0.34, 0.05});
+    near.run(k.in(), mk);
+    ASSERT_EQ(near.state(), Striker::State::Kick);
+    k.place(Pose2(-0.5, 0.0, 0.0), {-0.12, 0.05});
+    k.time += 0.3;
+    near.run(k.in(), mk);
+    EXPECT_NE(near.state(), Striker::State::Kick);
+    EXPECT_NE(mk.motion, MotionType::Kick);
+  }
   i.motion.kickDone = true;
   i.ball.rolling = true;  // on its way to the other half
   i.ball.fieldEndPosition = {2.0, 0.3};

@@ -55,9 +55,14 @@ void Striker::run(const BehaviorInput& in, const BallTracks& balls, MotionReques
   const bool overshot = in.pose.valid && params_.player != "baseline" &&
                         in.pose.pose.x > -field_.lineWidth / 2 - params_.halfwayClearance + params_.halfwayGuard;
   if (machine_.state == State::Kick) {
+    // The ball still in front of the foot, and (nudged while the engine walked) not now so near
+    // the halfway line that the kicking foot would touch it.
     const bool ballStays =
-        !in.ball.rolling && (in.ball.position - Eigen::Vector2d(params_.kickBallX, params_.kickBallY)).norm() <
-                                params_.alignDistance + params_.kickSlack;
+        !in.ball.rolling &&
+        (in.ball.position - Eigen::Vector2d(params_.kickBallX, params_.kickBallY)).norm() <
+            params_.alignDistance + params_.kickSlack &&
+        (params_.player == "baseline" || !in.ball.fieldValid ||
+         in.ball.fieldPosition.x() - params_.kickBallX <= -field_.lineWidth / 2 - params_.halfwayClearance);
     if (!in.motion.kickDone && machine_.timeIn(t) < params_.kickTimeout && ballStays && !overshot) {
       kick(in, motion);
       return;
