@@ -63,19 +63,6 @@ bool lineMatches(const Eigen::Vector2d& d0, const Eigen::Vector2d& d1, const Eig
   return std::max(a, b) > -kLineMaxDist && std::min(a, b) < lt + kLineMaxDist;
 }
 
-// Fraction of a ball's image disc inside the image.
-double discInImage(const Eigen::Vector2d& c, double r, int w, int h) {
-  int in = 0, n = 0;
-  for (int i = -4; i <= 4; ++i)
-    for (int j = -4; j <= 4; ++j) {
-      const Eigen::Vector2d p = c + r / 4 * Eigen::Vector2d(i, j);
-      if ((p - c).norm() > r) continue;
-      ++n;
-      in += p.x() >= 0 && p.y() >= 0 && p.x() < w && p.y() < h;
-    }
-  return n ? double(in) / n : 0;
-}
-
 FieldIntersection::Type truthType(LinesPercept::Intersection::Type t) {
   switch (t) {
     case LinesPercept::Intersection::Type::L: return FieldIntersection::Type::L;

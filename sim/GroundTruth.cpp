@@ -99,6 +99,18 @@ std::optional<VisibleLine> visibleStretch(const World& world, int robot, CameraI
   return v;
 }
 
+double discInImage(const Eigen::Vector2d& c, double r, int w, int h) {
+  int in = 0, n = 0;
+  for (int i = -4; i <= 4; ++i)
+    for (int j = -4; j <= 4; ++j) {
+      const Eigen::Vector2d p = c + r / 4 * Eigen::Vector2d(i, j);
+      if ((p - c).norm() > r) continue;
+      ++n;
+      in += p.x() >= 0 && p.y() >= 0 && p.x() < w && p.y() < h;
+    }
+  return n ? double(in) / n : 0;
+}
+
 bool ballVisible(const World& world, int robot, CameraId camera, int ball, double maxDistance) {
   const Eigen::Vector3d centre = world.ballPosition(ball);
   const Eigen::Vector3d eye = world.cameraPose(robot, camera).translation();

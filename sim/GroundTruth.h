@@ -52,6 +52,9 @@ std::optional<Eigen::Vector2d> truePixel(const World& world, int robot, CameraId
 bool trulyVisible(const World& world, int robot, CameraId camera, const Eigen::Vector3d& pField,
                   double maxDistance = 1e9);
 
+// The share (0..1) of a ball's image disc (centre, radius in pixels) inside a width x height image.
+double discInImage(const Eigen::Vector2d& centre, double radiusPx, int width, int height);
+
 // Whether ball `ball` is in the image and unhidden: its centre or its point nearest the camera.
 bool ballVisible(const World& world, int robot, CameraId camera, int ball, double maxDistance = 1e9);
 

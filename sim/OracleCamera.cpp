@@ -110,14 +110,7 @@ OracleView oracleView(const World& world, int robot, CameraId camera) {
     ball.image = *px;
     ball.radiusPx = tc.f * kBallRadius / inCamera.x();
     ball.distance = distance;
-    int in = 0, all = 0;
-    for (int i = -4; i <= 4; ++i)
-      for (int j = -4; j <= 4; ++j) {
-        if (i * i + j * j > 16) continue;
-        ++all;
-        in += tc.inImage(ball.image + ball.radiusPx / 4 * Eigen::Vector2d(i, j));
-      }
-    ball.inImage = static_cast<double>(in) / all;
+    ball.inImage = discInImage(ball.image, ball.radiusPx, res.width, res.height);
     if (ball.inImage <= 0 || !ballVisible(world, robot, camera, b, kMaxDistance)) continue;
     view.balls.push_back(ball);
   }

@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "controllers/modules/ModuleField.h"
+#include "perception/vision/BallDetector.h"
 #include "perception/vision/IntersectionDetector.h"
 #include "robot/Error.h"
 #include "robot/ModuleRegistry.h"
@@ -155,16 +156,7 @@ CameraPercepts OracleVision::perceive(const OracleView& view, const CameraMatrix
       ball.radiusPx = radiusPx;
       ball.position = *g;
       ball.confidence = 1;
-      // As the vision states it: the centre pixel's uncertainty through the ray-plane intersection.
-      const double sigmaPx = std::max(0.5, 0.08 * radiusPx);
-      Eigen::Matrix2d j;
-      for (int axis = 0; axis < 2; ++axis) {
-        Eigen::Vector2d d = Eigen::Vector2d::Zero();
-        d[axis] = 0.5;
-        const auto a = cm.pixelToGround(ballPx + d, kBallRadius), b = cm.pixelToGround(ballPx - d, kBallRadius);
-        j.col(axis) = a && b ? Eigen::Vector2d(*a - *b) : Eigen::Vector2d(0.1, 0.1);
-      }
-      ball.covariance = sigmaPx * sigmaPx * j * j.transpose() + 1e-6 * Eigen::Matrix2d::Identity();
+      ball.covariance = vision::ballCovariance(cm, ballPx, radiusPx, kBallRadius);  // as the vision states it
     }
   return out;
 }

@@ -9,6 +9,18 @@
 
 namespace nao::vision {
 
+Eigen::Matrix2d ballCovariance(const CameraMatrix& cm, const Eigen::Vector2d& centre, double radiusPx, double radius) {
+  const double sigmaPx = std::max(0.5, 0.08 * radiusPx);
+  Eigen::Matrix2d j;
+  for (int axis = 0; axis < 2; ++axis) {
+    Eigen::Vector2d d = Eigen::Vector2d::Zero();
+    d[axis] = 0.5;
+    const auto a = cm.pixelToGround(centre + d, radius), b = cm.pixelToGround(centre - d, radius);
+    j.col(axis) = a && b ? Eigen::Vector2d(*a - *b) : Eigen::Vector2d(0.1, 0.1);
+  }
+  return sigmaPx * sigmaPx * j * j.transpose() + 1e-6 * Eigen::Matrix2d::Identity();
+}
+
 double expectedBallRadius(const CameraMatrix& cm, const Eigen::Vector2d& pixel, double radius) {
   const auto g = cm.pixelToGround(pixel, radius);
   if (!g) return 0;
@@ -682,16 +694,7 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
       best.radiusPx = circle.r;
       best.position = *pos;
       best.confidence = c.score;
-      // Covariance: the centre pixel's uncertainty through the ray-plane intersection.
-      const double sigmaPx = std::max(0.5, 0.08 * circle.r);
-      Eigen::Matrix2d j;
-      for (int axis = 0; axis < 2; ++axis) {
-        Eigen::Vector2d d = Eigen::Vector2d::Zero();
-        d[axis] = 0.5;
-        const auto a = cm.pixelToGround(circle.c + d, params.radius), b = cm.pixelToGround(circle.c - d, params.radius);
-        j.col(axis) = a && b ? Eigen::Vector2d(*a - *b) : Eigen::Vector2d(0.1, 0.1);
-      }
-      best.covariance = sigmaPx * sigmaPx * j * j.transpose() + 1e-6 * Eigen::Matrix2d::Identity();
+      best.covariance = ballCovariance(cm, circle.c, circle.r, params.radius);
     }
   }
   if (best.seen) best.confidence = std::min(1.0, best.confidence / 3);

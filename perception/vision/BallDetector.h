@@ -121,5 +121,9 @@ BallPercept detectBall(const CameraImage& image, const ScanLineRegions& regions,
 
 // The image radius a ball at this pixel would have (0 above the horizon).
 double expectedBallRadius(const CameraMatrix& cm, const Eigen::Vector2d& pixel, double radius);
+// The ground position's covariance of a ball seen at `centre` (pixels) with `radiusPx`: the
+// centre pixel's uncertainty (max(0.5, 0.08 radius) px) through the ray-plane intersection at
+// the ball's centre height `radius`.
+Eigen::Matrix2d ballCovariance(const CameraMatrix& cm, const Eigen::Vector2d& centre, double radiusPx, double radius);
 
 }  // namespace nao::vision
