@@ -15,6 +15,7 @@
 #include "controllers/StandController.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
+#include "scenarios/Match.h"
 #include "scenarios/PerceptionBench.h"
 #include "scenarios/SimRun.h"
 #include "sim/CameraRenderer.h"
@@ -47,14 +48,17 @@ int benchSimCommand(const BenchSimOptions& options) {
   o.cameras = true;
   o.seconds = std::min(seconds, 10.0);
   std::vector<double> top, bottom;
+  std::string glVendor, glRenderer;
   for (int i = 0; i < repeats; ++i) {
     std::fprintf(stderr, "bench sim: camera run %d/%d\n", i + 1, repeats);
     const auto r = sim::runSim(o);
     cameraRtf.push_back(r.simSeconds / r.wallSeconds);
     top.insert(top.end(), r.renderMsTop.begin(), r.renderMsTop.end());
+    glVendor = r.glVendor;
+    glRenderer = r.glRenderer;
     bottom.insert(bottom.end(), r.renderMsBottom.begin(), r.renderMsBottom.end());
   }
-  const nlohmann::json j = {{"physics_rtf", sim::median(physicsRtf)},
+  nlohmann::json j = {{"physics_rtf", sim::median(physicsRtf)},
                             {"render_ms_top", sim::median(top)},
                             {"render_ms_bottom", sim::median(bottom)},
                             {"rtf_with_cameras", sim::median(cameraRtf)},
@@ -63,6 +67,10 @@ int benchSimCommand(const BenchSimOptions& options) {
                             {"renders", {{"top", top.size()}, {"bottom", bottom.size()}}},
                             {"simulated_seconds_per_run", {{"physics", seconds}, {"cameras", o.seconds}}},
                             {"lighting", lightingJson(lighting)}};
+  if (!glRenderer.empty()) {
+    j["gl_vendor"] = glVendor;
+    j["gl_renderer"] = glRenderer;
+  }
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }
@@ -177,6 +185,76 @@ int benchProgramCommand(const BenchProgramOptions& options) {
       for (const auto& [module, v] : byModule) modules[pipeline][module] = round4(sim::median(v));
     j["module_ms_median"] = modules;
   }
+  writeJson(options.common.json.empty() ? "-" : options.common.json, j);
+  return 0;
+}
+
+// A short 1vs1 game, both robot programs, as `match` plays it: the real-time factor of the
+// game's loop (setup apart) with both robots' four cameras rendered and seen by the vision, and
+// with the fast percept mode; the modes take turns so that both see the same machine load, and
+// the median ratio is reported.
+int benchMatchCommand(const BenchMatchOptions& options) {
+  sim::MatchOptions o;
+  o.field = fieldFrom(options.common);
+  o.lighting = lightingFrom(options.lighting);
+  o.seed = options.common.seed;
+  o.seconds = options.seconds;
+  std::vector<std::string> modes;
+  if (options.percepts != "oracle") modes.push_back("vision");
+  if (options.percepts != "vision") modes.push_back("oracle");
+
+  std::map<std::string, std::vector<double>> rtf;
+  std::map<std::string, std::map<std::string, std::vector<double>>> shares;
+  std::vector<double> ratios;
+  nlohmann::json runs = nlohmann::json::array();
+  std::string vendor, renderer;
+  for (int i = 0; i < options.repeats; ++i) {
+    std::map<std::string, double> thisRound;
+    for (const std::string& mode : modes) {
+      std::fprintf(stderr, "bench match: %s game %d/%d (%.0f simulated s)\n", mode.c_str(), i + 1, options.repeats,
+                   o.seconds);
+      o.percepts = mode;
+      const sim::MatchResult r = sim::runMatch(o);
+      // The game's loop only: building the world and the programs (about 0.3 s) is no part of
+      // how fast a game runs, and would weigh on short benches.
+      const double wall = std::max(r.wallSeconds - r.wall.setup, 1e-9), factor = r.simSeconds / wall;
+      rtf[mode].push_back(factor);
+      thisRound[mode] = factor;
+      const std::map<std::string, double> share = {
+          {"physics", r.wall.physics / wall},
+          {mode == "oracle" ? "oracle_views" : "render", r.wall.images / wall},
+          {"cognition", r.wall.cognition / wall},
+          {"motion", r.wall.motion / wall},
+          {"referee_and_rest", 1 - (r.wall.physics + r.wall.images + r.wall.cognition + r.wall.motion) / wall}};
+      nlohmann::json run = {{"percepts", mode}, {"rtf", round4(factor)}, {"simulated_s", round4(r.simSeconds)},
+                            {"wall_s", round4(wall)}, {"setup_s", round4(r.wall.setup)}, {"state", r.state}};
+      for (const auto& [k, v] : share) {
+        shares[mode][k].push_back(v);
+        run["wall_share"][k] = round4(v);
+      }
+      runs.push_back(run);
+      if (!r.glRenderer.empty()) {
+        vendor = r.glVendor;
+        renderer = r.glRenderer;
+      }
+    }
+    if (thisRound.count("vision") && thisRound.count("oracle")) ratios.push_back(thisRound["oracle"] / thisRound["vision"]);
+  }
+  nlohmann::json j;
+  for (const std::string& mode : modes) {
+    j[mode == "vision" ? "rtf" : "rtf_oracle"] = round4(sim::median(rtf[mode]));
+    for (const auto& [k, v] : shares[mode]) j["wall_share"][mode][k] = round4(sim::median(v));
+  }
+  if (!ratios.empty()) j["oracle_speedup"] = round4(sim::median(ratios));
+  if (!renderer.empty()) {
+    j["gl_vendor"] = vendor;
+    j["gl_renderer"] = renderer;
+  }
+  j["repeats"] = options.repeats;
+  j["simulated_seconds_per_game"] = o.seconds;
+  j["cameras"] = 4;
+  j["runs"] = runs;
+  j["lighting"] = lightingJson(o.lighting);
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }

@@ -16,6 +16,7 @@ int runCommand(const RunOptions& o);
 int runNao(const RunOptions& o);
 int benchSimCommand(const BenchSimOptions& o);
 int benchProgramCommand(const BenchProgramOptions& o);
+int benchMatchCommand(const BenchMatchOptions& o);
 int benchPerceptionCommand(const BenchPerceptionOptions& o);
 int benchCalibrationCommand(const BenchCalibrationOptions& o);
 int perceiveCommand(const PerceiveOptions& o);

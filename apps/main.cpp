@@ -22,6 +22,7 @@ void bind(CommandLine& cl) {
   to("run", nao::cli::runCommand, o.run);
   to("bench sim", nao::cli::benchSimCommand, o.benchSim);
   to("bench program", nao::cli::benchProgramCommand, o.benchProgram);
+  to("bench match", nao::cli::benchMatchCommand, o.benchMatch);
   to("bench perception", nao::cli::benchPerceptionCommand, o.benchPerception);
   to("bench calibration", nao::cli::benchCalibrationCommand, o.benchCalibration);
   to("perceive", nao::cli::perceiveCommand, o.perceive);

@@ -28,6 +28,19 @@ namespace nao::sim {
 
 namespace {
 
+// Adds its scope's wall time to `total` (seconds): where a match's time goes (bench match).
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 constexpr int kBalls = 4;
 const char* kTeamNames[2] = {"home", "away"};
 
@@ -202,6 +215,7 @@ MatchResult runMatch(const MatchOptions& o) {
     e["t"] = world.time();
     events.push_back(std::move(e));
   };
+  MatchWallTime wall;
   std::array<Player, 2> players;
   for (int r = 0; r < 2; ++r) {
     Player& p = players[static_cast<std::size_t>(r)];
@@ -210,9 +224,13 @@ MatchResult runMatch(const MatchOptions& o) {
     p.present = !sr || sr->present;
     p.scripted = sr && !sr->program;  // a prop of the referee's: its motion from the script, no cameras
     if (!p.scripted && oracle)
-      p.backend->setImageSource([&world, r](CameraId cam, double) { return oracleImage(world, r, cam); });
+      p.backend->setImageSource([&world, &wall, r](CameraId cam, double) {
+        const Stopwatch watch(wall.images);
+        return oracleImage(world, r, cam);
+      });
     else if (!p.scripted)
-      p.backend->setImageSource([&world, &renderer, &o, &noise, r](CameraId cam, double time) {
+      p.backend->setImageSource([&world, &renderer, &o, &noise, &wall, r](CameraId cam, double time) {
+        const Stopwatch watch(wall.images);
         const CameraResolution res = world.cameraResolution(cam);
         return renderer->renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width, res.height,
                                     o.lighting, cam, time, noise);
@@ -294,8 +312,12 @@ MatchResult runMatch(const MatchOptions& o) {
   double playingSeconds = 0, previous = world.time(), nextFrame = 0;
   std::vector<ReplayFrame> frames;
   bool coinTossed = false;
+  const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   while (world.time() < endTime - 1e-9 && !gc.finished()) {
-    world.stepCycle();
+    {
+      const Stopwatch watch(wall.physics);
+      world.stepCycle();
+    }
     const double t = world.time();
     if (gc.state() == gc::State::Playing) playingSeconds += t - previous;
     previous = t;
@@ -322,6 +344,9 @@ MatchResult runMatch(const MatchOptions& o) {
       if (p.scripted) p.program->blackboard().write<MotionRequest>() = p.request;
       if (!p.program->cycle(*p.backend))
         throw Error("match", std::string(kTeamNames[r]) + " robot stopped: " + p.backend->stopReason());
+      const RobotProgram::CycleTiming& timing = p.program->lastTiming();
+      wall.motion += timing.motionMs / 1000;
+      for (double ms : timing.cognitionMs) wall.cognition += ms / 1000;
     }
     // The operator.
     if (gc.state() == gc::State::Initial && readyAt >= 0 && t >= readyAt) {
@@ -538,6 +563,12 @@ MatchResult runMatch(const MatchOptions& o) {
   result.state = gc::stateName(gc.state());
   result.simSeconds = world.time();
   result.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  result.wall = wall;
+  result.wall.setup = setupSeconds;
+  if (renderer) {
+    result.glVendor = renderer->glVendor();
+    result.glRenderer = renderer->glRenderer();
+  }
   nlohmann::json robots = nlohmann::json::array();
   for (int r = 0; r < 2; ++r) {
     Player& p = players[static_cast<std::size_t>(r)];

@@ -43,11 +43,23 @@ struct MatchOptions {
   std::function<void(double simTime, const std::string& status)> progress;  // about every 10 simulated s
 };
 
+// Where a match's wall time went, in seconds. The game's loop: physics, images, cognition,
+// motion and the rest (the referee, the GameController).
+struct MatchWallTime {
+  double setup = 0;      // building the world and both robot programs, before the first step
+  double physics = 0;    // World::stepCycle
+  double images = 0;     // rendering the cameras, or the oracle's views
+  double cognition = 0;  // both robot programs' cognition runs
+  double motion = 0;     // both robot programs' motion cycles
+};
+
 struct MatchResult {
   nlohmann::json json;  // the `match` contract (docs: design.md): score, points_by_kind, events, robots, ...
   int homeScore = 0, awayScore = 0;
   std::string state;    // the GameController's last state
   double simSeconds = 0, wallSeconds = 0;
+  MatchWallTime wall;
+  std::string glVendor, glRenderer;  // the renderer's OpenGL; empty in the fast percept mode
   nlohmann::json replay;  // replayData's JSON when MatchOptions::replay
 };
 

@@ -362,27 +362,37 @@ modules::OracleVision::Params OracleFit::params(const modules::OracleVision::Par
   modules::OracleVision::Params p = defaults;
   p.fittedBy = fittedBy;
   p.distanceBins = bins;
-  auto rates = [&](const Rate& r) {
-    std::vector<double> out(bins.size(), 0.0);
+  // A bin without samples takes its nearest sampled neighbour's rate; a table without any keeps
+  // the defaults' (where its bins are these), so a small fit never claims "never seen".
+  auto rates = [&](const Rate& r, const std::vector<double>& fallback) {
+    std::vector<int> sampled;
     for (std::size_t i = 0; i < bins.size(); ++i)
-      out[i] = r.seen[i] > 0 ? static_cast<double>(r.found[i]) / r.seen[i] : i > 0 ? out[i - 1] : 0.0;
+      if (r.seen[i] > 0) sampled.push_back(static_cast<int>(i));
+    if (sampled.empty() && fallback.size() == bins.size()) return fallback;
+    std::vector<double> out(bins.size(), sampled.empty() ? 1.0 : 0.0);
+    for (std::size_t i = 0; i < bins.size() && !sampled.empty(); ++i) {
+      int nearest = sampled.front();
+      for (int j : sampled)
+        if (std::abs(j - static_cast<int>(i)) < std::abs(nearest - static_cast<int>(i))) nearest = j;
+      out[i] = static_cast<double>(r.found[nearest]) / r.seen[nearest];
+    }
     return out;
   };
   auto perFrame = [&](int n) { return frames ? static_cast<double>(n) / frames : 0.0; };
   // Medians of error magnitudes to sigmas: a 2-D normal's |e| has median 1.1774 sigma, a
   // 1-D one's 0.6745 sigma.
-  p.ball.detection = rates(ball);
+  p.ball.detection = rates(ball, defaults.ball.detection);
   if (!ballErrorPerRadius.empty()) p.ball.sigmaPerRadius = median(ballErrorPerRadius) / 1.1774;
   if (!ballErrorPxSmall.empty()) p.ball.minSigmaPx = median(ballErrorPxSmall) / 1.1774;
   p.ball.falsePerImage = perFrame(falseBalls);
-  p.lines.detection = rates(linesLong);
-  p.lines.detectionShort = rates(linesShort);
+  p.lines.detection = rates(linesLong, defaults.lines.detection);
+  p.lines.detectionShort = rates(linesShort, defaults.lines.detectionShort);
   if (!lineErrorPx.empty()) p.lines.sigmaPx = median(lineErrorPx) / 0.6745;
   p.lines.falsePerImage = perFrame(falseLines);
-  p.circle.detection = rates(circle);
+  p.circle.detection = rates(circle, defaults.circle.detection);
   if (!circleErrorM.empty()) p.circle.sigma = median(circleErrorM) / 1.1774;
   p.circle.falsePerImage = perFrame(falseCircles);
-  p.penaltyMark.detection = rates(penaltyMark);
+  p.penaltyMark.detection = rates(penaltyMark, defaults.penaltyMark.detection);
   if (!penaltyMarkErrorM.empty()) p.penaltyMark.sigma = median(penaltyMarkErrorM) / 1.1774;
   p.penaltyMark.falsePerImage = perFrame(falsePenaltyMarks);
   return p;

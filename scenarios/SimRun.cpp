@@ -215,6 +215,10 @@ SimRunResult runSim(const SimRunOptions& options) {
     if (options.progress && c % 83 == 0) options.progress(world.time());
   }
   result.wallSeconds = std::chrono::duration<double>(Clock::now() - wallStart).count();
+  if (renderer) {
+    result.glVendor = renderer->glVendor();
+    result.glRenderer = renderer->glRenderer();
+  }
   result.imagesProcessedTop = program.cognitionRuns()[static_cast<int>(CameraId::Top)];
   result.imagesProcessedBottom = program.cognitionRuns()[static_cast<int>(CameraId::Bottom)];
   result.simSeconds = world.time();

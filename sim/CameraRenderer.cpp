@@ -86,6 +86,7 @@ struct CameraRenderer::Impl {
   mjvOption option;
   mjvCamera camera;
   std::vector<std::uint8_t> pixels;
+  std::string vendor, renderer;  // GL_VENDOR, GL_RENDERER of the context
 
   void makeCurrent() {
     if (!OSMesaMakeCurrent(context, buffer.data(), GL_UNSIGNED_BYTE, bufferWidth, bufferHeight))
@@ -113,6 +114,12 @@ struct CameraRenderer::Impl {
     mjr_makeContext(m, &con, mjFONTSCALE_100);
     mjr_setBuffer(mjFB_OFFSCREEN, &con);
     if (con.currentBuffer != mjFB_OFFSCREEN) throw Error(kWhere, "no offscreen framebuffer (OpenGL too old?)");
+    auto text = [](GLenum name) {
+      const auto* s = reinterpret_cast<const char*>(glGetString(name));
+      return std::string(s ? s : "");
+    };
+    vendor = text(GL_VENDOR);
+    renderer = text(GL_RENDERER);
     mjv_defaultScene(&scene);
     mjv_makeScene(m, &scene, kMaxSceneGeoms);
     model = m;
@@ -130,6 +137,9 @@ struct CameraRenderer::Impl {
     }
   }
 };
+
+std::string CameraRenderer::glVendor() const { return impl_->vendor; }
+std::string CameraRenderer::glRenderer() const { return impl_->renderer; }
 
 CameraRenderer::CameraRenderer(const mjModel* m) : impl_(std::make_unique<Impl>()) {
   Impl& I = *impl_;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <random>
+#include <string>
 
 #include "robot/CameraImage.h"
 #include "sim/Lighting.h"
@@ -43,6 +44,11 @@ class CameraRenderer {
   // sensor noise of lighting.noise from rng: the same rng state gives the same bytes.
   CameraImage renderImage(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting,
                           CameraId camera, double timestamp, std::mt19937_64& rng);
+
+  // The OpenGL implementation that renders (GL_VENDOR, GL_RENDERER); empty before the first
+  // image.
+  std::string glVendor() const;
+  std::string glRenderer() const;
 
  private:
   struct Impl;

@@ -52,6 +52,14 @@ std::optional<Eigen::Vector2d> truePixel(const World& world, int robot, CameraId
 bool trulyVisible(const World& world, int robot, CameraId camera, const Eigen::Vector3d& pField,
                   double maxDistance = 1e9);
 
+// The first visible geom (mj_ray's: not transparent) on the segment from..to: its fraction of
+// the way (0..1) and its id, as mj_ray finds it, but trying only the geoms near the segment.
+struct SegmentHit {
+  double fraction = 0;
+  int geom = -1;
+};
+std::optional<SegmentHit> firstHit(const World& world, const Eigen::Vector3d& from, const Eigen::Vector3d& to);
+
 // The share (0..1) of a ball's image disc (centre, radius in pixels) inside a width x height image.
 double discInImage(const Eigen::Vector2d& centre, double radiusPx, int width, int height);
 

@@ -43,6 +43,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "run") return "run --seconds 0.5";
   if (path == "bench sim") return "bench sim --seconds 1 --repeats 1";
   if (path == "bench program") return "bench program --seconds 1 --repeats 1";
+  if (path == "bench match") return "bench match --seconds 2 --repeats 1 --percepts oracle";
   if (path == "bench perception") return "bench perception --frames 2 --repeats 1";
   if (path == "bench calibration") return "bench calibration --repeats 1 --time-limit 3";
   if (path == "perceive") return "perceive " + image;
@@ -84,7 +85,34 @@ TEST(CliJson, EveryCommandPrintsOnlyJsonOnStdout) {
     EXPECT_FALSE(fs::exists(fs::current_path() / "MUJOCO_LOG.TXT"));
     ++checked;
   }
-  EXPECT_EQ(checked, 24);
+  EXPECT_EQ(checked, 25);
+}
+
+// bench match: both percept modes in one run, the fast one much faster (it renders nothing and
+// runs no camera pipeline), each game's wall time split into parts that add up, and the
+// renderer named where one rendered.
+TEST(CliJson, BenchMatchTimesBothPerceptModesSideBySide) {
+  const Output o = runJson("bench match --seconds 3 --repeats 1");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto j = nlohmann::json::parse(o.out);
+  EXPECT_GT(j["rtf"].get<double>(), 0);
+  EXPECT_GT(j["rtf_oracle"].get<double>(), j["rtf"].get<double>());
+  EXPECT_GT(j["oracle_speedup"].get<double>(), 1.5) << o.out;
+  EXPECT_FALSE(j["gl_vendor"].get<std::string>().empty());
+  EXPECT_FALSE(j["gl_renderer"].get<std::string>().empty());
+  ASSERT_EQ(j["runs"].size(), 2u);
+  for (const auto& run : j["runs"]) {
+    EXPECT_NEAR(run["simulated_s"].get<double>(), 3.0, 0.02) << run.dump();
+    double sum = 0;
+    for (const auto& [part, share] : run["wall_share"].items()) {
+      EXPECT_GE(share.get<double>(), part == "referee_and_rest" ? -0.02 : 0.0) << part << " " << run.dump();
+      sum += share.get<double>();
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-3) << run.dump();
+  }
+  // Rendering four cameras is most of a vision game; the oracle's views are a small part of one.
+  EXPECT_GT(j["wall_share"]["vision"]["render"].get<double>(), 0.3) << o.out;
+  EXPECT_LT(j["wall_share"]["oracle"]["oracle_views"].get<double>(), 0.3) << o.out;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // (sim/OracleCamera.h), the OracleVision module that turns it into percepts with the vision's
 // errors, its error model fitted from `eval perception` and checked against the vision's own
 // figures, and a game played on it.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -221,12 +222,26 @@ void expectAlike(const sim::PerceptionFigures& vision, const sim::PerceptionFigu
               vision.ballRecall3(), oracle.ballRecall3(), vision.ballRecall5(), oracle.ballRecall5(),
               vision.falseBallsPerFrame(), oracle.falseBallsPerFrame(), vision.circleRate(), oracle.circleRate());
   EXPECT_EQ(vision.frames, oracle.frames);
-  EXPECT_NEAR(oracle.lineRecall(), vision.lineRecall(), 0.05) << what;
-  EXPECT_NEAR(oracle.linePrecision(), vision.linePrecision(), 0.03) << what;
-  EXPECT_NEAR(oracle.ballRecall3(), vision.ballRecall3(), 0.05) << what;
-  EXPECT_NEAR(oracle.ballRecall5(), vision.ballRecall5(), 0.06) << what;
+  // Two rates alike: within `floor`, or within three standard errors of their difference where
+  // the samples are small (a single miss among 14 balls moves a rate by 0.07).
+  auto alike = [&](const char* name, int found1, int n1, int found2, int n2, double floor) {
+    if (n1 == 0 || n2 == 0) return;
+    const double p1 = double(found1) / n1, p2 = double(found2) / n2;
+    const double pooled = std::clamp(double(found1 + found2) / (n1 + n2), 0.05, 0.95);
+    const double tolerance = std::max(floor, 3 * std::sqrt(pooled * (1 - pooled) * (1.0 / n1 + 1.0 / n2)));
+    EXPECT_LE(std::abs(p1 - p2), tolerance) << what << ": " << name << " " << found1 << "/" << n1 << " against "
+                                            << found2 << "/" << n2;
+  };
+  alike("line recall", vision.trueLinesFound, vision.trueLines, oracle.trueLinesFound, oracle.trueLines, 0.05);
+  alike("line precision", vision.detectedLinesMatched, vision.detectedLines, oracle.detectedLinesMatched,
+        oracle.detectedLines, 0.03);
+  alike("ball recall 3 m", vision.found3, vision.balls3, oracle.found3, oracle.balls3, 0.05);
+  alike("ball recall 5 m", vision.found5, vision.balls5, oracle.found5, oracle.balls5, 0.06);
+  alike("circle", vision.circleFound, vision.circleFrames, oracle.circleFound, oracle.circleFrames, 0.2);
   EXPECT_NEAR(oracle.falseBallsPerFrame(), vision.falseBallsPerFrame(), 0.02) << what;
-  EXPECT_NEAR(oracle.circleRate(), vision.circleRate(), 0.2) << what;
+  // Enough scenes that the comparison can fail: dozens of lines and balls in view.
+  EXPECT_GE(vision.trueLines, 40) << what;
+  EXPECT_GE(vision.balls5, 10) << what;
   // Both place the balls they find within a few per cent of their distance.
   EXPECT_LT(oracle.medianBallErrorRatio(), std::max(0.02, 3 * vision.medianBallErrorRatio())) << what;
 }
@@ -235,7 +250,7 @@ void expectAlike(const sim::PerceptionFigures& vision, const sim::PerceptionFigu
 // one seed's scenes, compared on another's; and the committed model (config/parameters/
 // OracleVision.json, fitted on 300 scenes under the lighting sweep) on the same.
 TEST(OracleVision, ItsErrorsAreTheVisionsOnScenesItWasNotFittedOn) {
-  const int trials = std::getenv("NAO_TEST_QUICK") ? 25 : 50;
+  const int trials = 50;
   sim::PerceptionEvalOptions fit = evalOptions(trials, 31);
   fit.fitOracle = true;
   const sim::PerceptionEvalResult fitted = sim::evaluatePerception(fit);

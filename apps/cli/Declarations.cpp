@@ -253,7 +253,7 @@ void CommandLine::declare() {
     });
   }
   {
-    CLI::App* bench = group("bench", "speed figures as JSON: sim, program, perception, calibration");
+    CLI::App* bench = group("bench", "speed figures as JSON: sim, program, match, perception, calibration");
     BenchSimOptions& s = o.benchSim;
     Command& c = leaf(bench, "sim", "physics and rendering speed: real-time factors, render ms per camera", s.common);
     seedJsonField(c);
@@ -277,6 +277,18 @@ void CommandLine::declare() {
     cg.onField("--goto", g.goTo);
     cg.flag("--per-module", g.perModule,
             "one more run with the timing channel: each module's median ms (the channel's overhead included)");
+
+    BenchMatchOptions& m = o.benchMatch;
+    Command& cm = leaf(bench, "match",
+                       "a 1vs1 game's speed, both robot programs with four cameras at 30 Hz: real-time factor with "
+                       "the vision and with the fast percept mode, side by side, and where the wall time goes",
+                       m.common);
+    seedJsonField(cm);
+    cm.text("--lighting", m.lighting, "SPEC", kLightingHelp + " (default " + m.lighting + ")");
+    cm.number("--seconds", m.seconds, 1, 600, "s", "simulated seconds per game, from its start (the robots walk in during READY)");
+    cm.count("--repeats", m.repeats, 1, 20, "games per mode; the median is reported");
+    cm.choice("--percepts", m.percepts, {"both", "vision", "oracle"},
+              "both (a vision game and an oracle game in turn), vision or oracle");
 
     BenchPerceptionOptions& p = o.benchPerception;
     Command& cp = leaf(bench, "perception", "the vision's median ms per stage on simulated images", p.common);

@@ -67,6 +67,13 @@ struct BenchProgramOptions {
   bool perModule = false;
 };
 
+struct BenchMatchOptions {
+  CommonOptions common;
+  std::string lighting = "default", percepts = "both";  // vision, oracle, or both side by side
+  double seconds = 20;
+  int repeats = 3;
+};
+
 struct BenchPerceptionOptions {
   CommonOptions common;
   std::string lighting = "default", camera = "top";
@@ -215,6 +222,7 @@ struct Options {
   RunOptions run;
   BenchSimOptions benchSim;
   BenchProgramOptions benchProgram;
+  BenchMatchOptions benchMatch;
   BenchPerceptionOptions benchPerception;
   BenchCalibrationOptions benchCalibration;
   PerceiveOptions perceive;
