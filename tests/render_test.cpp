@@ -11,7 +11,9 @@
 #include <numbers>
 #include <numeric>
 #include <opencv2/imgcodecs.hpp>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "perception/FieldDimensions.h"
 #include "robot/Error.h"
@@ -192,6 +194,36 @@ TEST(RenderTest, SameSeedSameBytesOtherSeedOnlyNoise) {
   const CameraImage na = renderer.renderImage(scene.m, scene.d, scene.camera, 320, 240, lighting, CameraId::Top, 0, a);
   const CameraImage nc = renderer.renderImage(scene.m, scene.d, scene.camera, 320, 240, lighting, CameraId::Top, 0, c);
   EXPECT_EQ(na.yuyv, nc.yuyv);
+}
+
+// The noise pass adds sigma times a sum of four 16-bit uniforms from one 64-bit draw (half sigma
+// on U and V) and rounds half away from zero into a byte: its bytes against that formula, on
+// every byte value and on sigmas large enough to reach both ends of the range.
+TEST(RenderTest, SensorNoiseIsItsFormulaRoundedAndClampedIntoBytes) {
+  for (double sigma : {0.7, 2.0, 40.0}) {
+    CameraImage image;
+    image.width = 256;
+    image.height = 8;
+    image.yuyv.resize(static_cast<std::size_t>(image.width) * image.height * 2);
+    for (std::size_t k = 0; k < image.yuyv.size(); ++k) image.yuyv[k] = static_cast<std::uint8_t>(k % 256);
+    const std::vector<std::uint8_t> before = image.yuyv;
+    std::mt19937_64 rng(11), reference(11);
+    addSensorNoise(image, sigma, rng);
+    const double scaleY = sigma / (65536.0 * std::sqrt(4.0 / 12.0));
+    int clamped = 0;
+    for (std::size_t k = 0; k < before.size(); ++k) {
+      const std::uint64_t bits = reference();
+      const double sum = double(bits & 0xffff) + double((bits >> 16) & 0xffff) + double((bits >> 32) & 0xffff) +
+                         double(bits >> 48);
+      const double v = before[k] + (sum - 2 * 65535.0) * (k % 2 == 0 ? scaleY : scaleY / 2);
+      const long expected = std::clamp(std::lround(v), 0L, 255L);
+      ASSERT_EQ(image.yuyv[k], expected) << "sigma " << sigma << ", byte " << k << ": " << v;
+      clamped += expected == 0 || expected == 255;
+    }
+    if (sigma > 10) {
+      EXPECT_GT(clamped, 100);
+    }
+  }
 }
 
 TEST(RenderTest, TwoRenderersTakeTurns) {
