@@ -5,6 +5,7 @@ packages=(
   build-essential cmake pkg-config git
   libmujoco-dev          # MuJoCo 2.2.2: physics
   libosmesa6-dev         # off-screen software OpenGL for the simulated cameras
+  libegl-dev libegl-mesa0  # --gl egl: EGL headers, Mesa's EGL (a GPU's or its software device)
   libeigen3-dev          # geometry
   libopencv-dev          # image I/O, debug drawing
   libceres-dev           # least squares (calibration)

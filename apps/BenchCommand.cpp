@@ -48,7 +48,7 @@ int benchSimCommand(const BenchSimOptions& options) {
   o.cameras = true;
   o.seconds = std::min(seconds, 10.0);
   std::vector<double> top, bottom;
-  std::string glVendor, glRenderer;
+  std::string glVendor, glRenderer, glPlatform;
   for (int i = 0; i < repeats; ++i) {
     std::fprintf(stderr, "bench sim: camera run %d/%d\n", i + 1, repeats);
     const auto r = sim::runSim(o);
@@ -56,6 +56,7 @@ int benchSimCommand(const BenchSimOptions& options) {
     top.insert(top.end(), r.renderMsTop.begin(), r.renderMsTop.end());
     glVendor = r.glVendor;
     glRenderer = r.glRenderer;
+    glPlatform = r.glPlatform;
     bottom.insert(bottom.end(), r.renderMsBottom.begin(), r.renderMsBottom.end());
   }
   nlohmann::json j = {{"physics_rtf", sim::median(physicsRtf)},
@@ -70,6 +71,7 @@ int benchSimCommand(const BenchSimOptions& options) {
   if (!glRenderer.empty()) {
     j["gl_vendor"] = glVendor;
     j["gl_renderer"] = glRenderer;
+    j["gl_platform"] = glPlatform;
   }
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
@@ -112,10 +114,14 @@ int benchProgramCommand(const BenchProgramOptions& options) {
                         "rtf"};
   std::map<std::string, std::vector<double>> figures;
   nlohmann::json runs = nlohmann::json::array();
+  std::string glVendor, glRenderer, glPlatform;
   bool fell = false;
   for (int i = 0; i < options.repeats; ++i) {
     std::fprintf(stderr, "bench program: run %d/%d (%.0f simulated s)\n", i + 1, options.repeats, o.seconds);
     const sim::SimRunResult r = sim::runSim(o);
+    glVendor = r.glVendor;
+    glRenderer = r.glRenderer;
+    glPlatform = r.glPlatform;
     const std::map<std::string, double> f = {{"cognition_ms_median", quantile(r.cognitionMs, 0.5)},
                                              {"cognition_ms_p95", quantile(r.cognitionMs, 0.95)},
                                              {"cognition_ms_top_median", quantile(r.cognitionMsTop, 0.5)},
@@ -164,6 +170,9 @@ int benchProgramCommand(const BenchProgramOptions& options) {
   j["fell"] = fell;
   j["runs"] = runs;
   j["lighting"] = lightingJson(o.lighting);
+  j["gl_vendor"] = glVendor;
+  j["gl_renderer"] = glRenderer;
+  j["gl_platform"] = glPlatform;
 
   if (options.perModule) {
     // One more run with the timing channel subscribed: each module's median ms per pipeline.
@@ -207,7 +216,7 @@ int benchMatchCommand(const BenchMatchOptions& options) {
   std::map<std::string, std::map<std::string, std::vector<double>>> shares;
   std::vector<double> ratios;
   nlohmann::json runs = nlohmann::json::array();
-  std::string vendor, renderer;
+  std::string vendor, renderer, platform;
   for (int i = 0; i < options.repeats; ++i) {
     std::map<std::string, double> thisRound;
     for (const std::string& mode : modes) {
@@ -236,6 +245,7 @@ int benchMatchCommand(const BenchMatchOptions& options) {
       if (!r.glRenderer.empty()) {
         vendor = r.glVendor;
         renderer = r.glRenderer;
+        platform = r.glPlatform;
       }
     }
     if (thisRound.count("vision") && thisRound.count("oracle")) ratios.push_back(thisRound["oracle"] / thisRound["vision"]);
@@ -249,6 +259,7 @@ int benchMatchCommand(const BenchMatchOptions& options) {
   if (!renderer.empty()) {
     j["gl_vendor"] = vendor;
     j["gl_renderer"] = renderer;
+    j["gl_platform"] = platform;
   }
   j["repeats"] = options.repeats;
   j["simulated_seconds_per_game"] = o.seconds;

@@ -8,6 +8,7 @@
 
 #include "apps/Commands.h"
 #include "apps/cli/CommandLine.h"
+#include "sim/GlContext.h"
 
 namespace {
 
@@ -16,7 +17,10 @@ using nao::cli::CommandLine;
 void bind(CommandLine& cl) {
   auto& o = cl.options();
   auto to = [&](const std::string& path, auto body, const auto& options) {
-    cl.command(path)->run = [body, &options] { return body(options); };
+    cl.command(path)->run = [body, &options] {
+      nao::sim::setGlApi(*nao::sim::parseGlApi(options.common.gl));
+      return body(options);
+    };
   };
   to("render", nao::cli::renderCommand, o.render);
   to("run", nao::cli::runCommand, o.run);

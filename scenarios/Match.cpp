@@ -568,6 +568,7 @@ MatchResult runMatch(const MatchOptions& o) {
   if (renderer) {
     result.glVendor = renderer->glVendor();
     result.glRenderer = renderer->glRenderer();
+    result.glPlatform = renderer->glPlatform();
   }
   nlohmann::json robots = nlohmann::json::array();
   for (int r = 0; r < 2; ++r) {

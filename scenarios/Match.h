@@ -59,7 +59,7 @@ struct MatchResult {
   std::string state;    // the GameController's last state
   double simSeconds = 0, wallSeconds = 0;
   MatchWallTime wall;
-  std::string glVendor, glRenderer;  // the renderer's OpenGL; empty in the fast percept mode
+  std::string glVendor, glRenderer, glPlatform;  // the renderer's OpenGL; empty in the fast percept mode
   nlohmann::json replay;  // replayData's JSON when MatchOptions::replay
 };
 

@@ -218,6 +218,7 @@ SimRunResult runSim(const SimRunOptions& options) {
   if (renderer) {
     result.glVendor = renderer->glVendor();
     result.glRenderer = renderer->glRenderer();
+    result.glPlatform = renderer->glPlatform();
   }
   result.imagesProcessedTop = program.cognitionRuns()[static_cast<int>(CameraId::Top)];
   result.imagesProcessedBottom = program.cognitionRuns()[static_cast<int>(CameraId::Bottom)];

@@ -51,7 +51,7 @@ struct SimRunResult {
   int imagesTop = 0, imagesBottom = 0;  // delivered by the simulated cameras
   long imagesProcessedTop = 0, imagesProcessedBottom = 0;  // run through the robot program's cognition
   std::vector<double> renderMsTop, renderMsBottom;
-  std::string glVendor, glRenderer;  // the renderer's OpenGL, when cameras ran
+  std::string glVendor, glRenderer, glPlatform;  // the renderer's OpenGL, when cameras ran
   bool fell = false;
   double torsoHeightMin = 0, torsoHeightMax = 0;
   Eigen::Vector3d finalPose = Eigen::Vector3d::Zero();

@@ -1,6 +1,5 @@
 #include "sim/CameraRenderer.h"
 
-#include <GL/osmesa.h>
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "robot/Error.h"
+#include "sim/GlContext.h"
 #include "sim/ImageIO.h"
 
 namespace nao::sim {
@@ -88,9 +88,7 @@ void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng) {
 }
 
 struct CameraRenderer::Impl {
-  OSMesaContext context = nullptr;
-  std::vector<std::uint8_t> buffer;  // the default framebuffer (MuJoCo draws into its own FBO)
-  int bufferWidth = 0, bufferHeight = 0;
+  std::unique_ptr<GlContext> gl;
   const mjModel* model = nullptr;
   std::array<int, 4> modelSize{};  // ngeom, nmesh, ntex, nmat: tells a new model at an old address
   bool haveContext = false;
@@ -99,26 +97,12 @@ struct CameraRenderer::Impl {
   mjvOption option;
   mjvCamera camera;
   std::vector<std::uint8_t> pixels;
-  std::string vendor, renderer;  // GL_VENDOR, GL_RENDERER of the context
-
-  void makeCurrent() {
-    if (!OSMesaMakeCurrent(context, buffer.data(), GL_UNSIGNED_BYTE, bufferWidth, bufferHeight))
-      throw Error(kWhere, "OSMesaMakeCurrent failed");
-  }
 
   void bind(const mjModel* m) {
     const std::array<int, 4> size{m->ngeom, m->nmesh, m->ntex, m->nmat};
-    if (m == model && size == modelSize && haveContext) {
-      makeCurrent();
-      return;
-    }
     const int width = std::max(1, m->vis.global.offwidth), height = std::max(1, m->vis.global.offheight);
-    if (width > bufferWidth || height > bufferHeight) {
-      bufferWidth = std::max(width, bufferWidth);
-      bufferHeight = std::max(height, bufferHeight);
-      buffer.assign(static_cast<std::size_t>(bufferWidth) * bufferHeight * 4, 0);
-    }
-    makeCurrent();
+    gl->makeCurrent(width, height);
+    if (m == model && size == modelSize && haveContext) return;
     if (haveContext) {
       mjr_freeContext(&con);
       mjv_freeScene(&scene);
@@ -127,12 +111,6 @@ struct CameraRenderer::Impl {
     mjr_makeContext(m, &con, mjFONTSCALE_100);
     mjr_setBuffer(mjFB_OFFSCREEN, &con);
     if (con.currentBuffer != mjFB_OFFSCREEN) throw Error(kWhere, "no offscreen framebuffer (OpenGL too old?)");
-    auto text = [](GLenum name) {
-      const auto* s = reinterpret_cast<const char*>(glGetString(name));
-      return std::string(s ? s : "");
-    };
-    vendor = text(GL_VENDOR);
-    renderer = text(GL_RENDERER);
     mjv_defaultScene(&scene);
     mjv_makeScene(m, &scene, kMaxSceneGeoms);
     model = m;
@@ -141,23 +119,21 @@ struct CameraRenderer::Impl {
   }
 
   ~Impl() {
-    if (context) {
-      if (haveContext && OSMesaMakeCurrent(context, buffer.data(), GL_UNSIGNED_BYTE, bufferWidth, bufferHeight)) {
-        mjr_freeContext(&con);
-        mjv_freeScene(&scene);
-      }
-      OSMesaDestroyContext(context);
+    if (haveContext) {
+      gl->makeCurrent(1, 1);
+      mjr_freeContext(&con);
+      mjv_freeScene(&scene);
     }
   }
 };
 
-std::string CameraRenderer::glVendor() const { return impl_->vendor; }
-std::string CameraRenderer::glRenderer() const { return impl_->renderer; }
+std::string CameraRenderer::glVendor() const { return impl_->gl->vendor(); }
+std::string CameraRenderer::glRenderer() const { return impl_->gl->renderer(); }
+std::string CameraRenderer::glPlatform() const { return impl_->gl->platform(); }
 
 CameraRenderer::CameraRenderer(const mjModel* m) : impl_(std::make_unique<Impl>()) {
   Impl& I = *impl_;
-  I.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 8, nullptr);
-  if (!I.context) throw Error(kWhere, "OSMesaCreateContextExt failed");
+  I.gl = std::make_unique<GlContext>();
   // Only what a camera would see: no sites, joints, tendons, rangefinder rays, contact markers;
   // geom groups 0-2 (groups 3-5 hold collision-only geoms).
   mjv_defaultOption(&I.option);

@@ -1,9 +1,10 @@
 #pragma once
-// Off-screen rendering of a MuJoCo camera through OSMesa (software OpenGL, no display).
+// Off-screen rendering of a MuJoCo camera through OSMesa or EGL (sim/GlContext.h: --gl; no
+// display either way).
 // The image is an exact pinhole projection: the viewport is exactly width x height, the
 // MuJoCo camera's fovy is the vertical field of view, square pixels, principal point at the
-// centre, no lens effects. Each renderer owns one OSMesa context and makes it current in
-// every call, so several renderers may coexist (single-threaded use only).
+// centre, no lens effects. Each renderer owns one context and makes it current in every call,
+// so several renderers may coexist (single-threaded use only).
 #include <memory>
 #include <opencv2/core.hpp>
 #include <random>
@@ -28,7 +29,8 @@ void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng);
 class CameraRenderer {
  public:
   // Creates the context and its offscreen buffer (m->vis.global.offwidth x offheight) and
-  // uploads m's meshes and textures. Throws nao::Error("renderer", ...) when OSMesa fails.
+  // uploads m's meshes and textures. Throws nao::Error("renderer", ...) when no context can be
+  // made.
   explicit CameraRenderer(const mjModel_* m);
   ~CameraRenderer();
   CameraRenderer(const CameraRenderer&) = delete;
@@ -45,10 +47,11 @@ class CameraRenderer {
   CameraImage renderImage(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting,
                           CameraId camera, double timestamp, std::mt19937_64& rng);
 
-  // The OpenGL implementation that renders (GL_VENDOR, GL_RENDERER); empty before the first
-  // image.
+  // The OpenGL that renders: GL_VENDOR, GL_RENDERER, and the platform ("osmesa",
+  // "egl-device", "egl-surfaceless"; sim/GlContext.h).
   std::string glVendor() const;
   std::string glRenderer() const;
+  std::string glPlatform() const;
 
  private:
   struct Impl;

@@ -11,30 +11,15 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli/CommandLine.h"
+#include "tests/support/RunCommand.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Output {
-  int code = -1;
-  std::string out, err;
-};
+using Output = nao::test::SplitResult;
 
-Output runJson(const std::string& args) {
-  const fs::path err = fs::path(::testing::TempDir()) / "cli_json_stderr.txt";
-  const std::string cmd = "timeout -s KILL 600 " + std::string(NAO_BINARY) + " " + args + " --json - 2>" + err.string();
-  Output o;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return o;
-  char buf[4096];
-  while (std::size_t n = fread(buf, 1, sizeof buf, p)) o.out.append(buf, n);
-  const int status = pclose(p);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream f(err);
-  o.err.assign(std::istreambuf_iterator<char>(f), {});
-  return o;
-}
+Output runJson(const std::string& args) { return nao::test::runCommandSplit(args + " --json -", 600); }
 
 // The smallest run of every command (each declared in apps/cli/Declarations.cpp).
 std::string smallRun(const std::string& path, const std::string& dir) {

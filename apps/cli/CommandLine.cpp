@@ -154,6 +154,13 @@ void Command::json() {
       ->type_name("FILE|-");
 }
 
+void Command::gl() {
+  choice("--gl", common_.gl, {"auto", "egl", "osmesa"},
+         "the OpenGL the cameras render through: EGL (a GPU's device, MUJOCO_EGL_DEVICE_ID picks one by index; "
+         "else Mesa's software device or the surfaceless platform) or OSMesa; auto: EGL where it starts, else OSMesa "
+         "(on a CPU both are Mesa's llvmpipe and render the same bytes)");
+}
+
 void Command::field(const std::string& defaultText) {
   inputFile("--field", common_.field, "the field: a field_dimensions.json (default " + defaultText + ")");
 }

@@ -52,6 +52,7 @@ struct CommonOptions {
   std::uint32_t seed = 1;
   std::string json;   // "" = no JSON, "-" = stdout
   std::string field;  // "" = the command's default field
+  std::string gl = "osmesa";  // --gl: the OpenGL the cameras render through (sim/GlContext.h)
   std::vector<FieldPlace> places;
   std::set<std::string> given;  // the flags on the command line
   bool has(const std::string& flag) const { return given.count(flag) != 0; }
@@ -70,6 +71,7 @@ class Command {
   void seed();
   void json();
   void field(const std::string& defaultText);
+  void gl();  // --gl auto|egl|osmesa, on every command that renders
   CLI::Option* flag(const std::string& name, bool& value, const std::string& help);
   CLI::Option* number(const std::string& name, double& value, double lo, double hi, const std::string& unit,
                       const std::string& help);

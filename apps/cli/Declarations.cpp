@@ -172,6 +172,7 @@ void CommandLine::declare() {
   {
     RenderOptions& r = o.render;
     Command& c = leaf(root, "render", "one simulated camera image (or --view field: the field from above)", r.common);
+    c.gl();
     seedJsonField(c);
     simOptions(c, r.sim);
     c.choice("--camera", r.camera, {"top", "bottom"}, "which camera");
@@ -186,6 +187,7 @@ void CommandLine::declare() {
   {
     RunOptions& r = o.run;
     Command& c = leaf(root, "run", "the robot program on a backend: the simulator (sim) or a NAO (nao)", r.common);
+    c.gl();
     c.choice("--backend", r.backend, {"sim", "nao"}, "where the robot program runs");
     seedJsonField(c);
     simOptions(c, r.sim);
@@ -256,6 +258,7 @@ void CommandLine::declare() {
     CLI::App* bench = group("bench", "speed figures as JSON: sim, program, match, perception, calibration");
     BenchSimOptions& s = o.benchSim;
     Command& c = leaf(bench, "sim", "physics and rendering speed: real-time factors, render ms per camera", s.common);
+    c.gl();
     seedJsonField(c);
     c.text("--lighting", s.lighting, "SPEC", kLightingHelp + " (default " + s.lighting + ")");
     c.inputFile("--model", s.model, "the robot's MJCF (default models/nao_v6.xml)");
@@ -267,6 +270,7 @@ void CommandLine::declare() {
                        "the robot program in the simulator, both cameras at 30 Hz: ms per cognition run and motion "
                        "cycle, real-time factor",
                        g.common);
+    cg.gl();
     seedJsonField(cg);
     cg.text("--lighting", g.lighting, "SPEC", kLightingHelp + " (default " + g.lighting + ")");
     cg.inputFile("--model", g.model, "the robot's MJCF (default models/nao_v6.xml)");
@@ -283,6 +287,7 @@ void CommandLine::declare() {
                        "a 1vs1 game's speed, both robot programs with four cameras at 30 Hz: real-time factor with "
                        "the vision and with the fast percept mode, side by side, and where the wall time goes",
                        m.common);
+    cm.gl();
     seedJsonField(cm);
     cm.text("--lighting", m.lighting, "SPEC", kLightingHelp + " (default " + m.lighting + ")");
     cm.number("--seconds", m.seconds, 1, 600, "s", "simulated seconds per game, from its start (the robots walk in during READY)");
@@ -292,6 +297,7 @@ void CommandLine::declare() {
 
     BenchPerceptionOptions& p = o.benchPerception;
     Command& cp = leaf(bench, "perception", "the vision's median ms per stage on simulated images", p.common);
+    cp.gl();
     seedJsonField(cp);
     cp.text("--lighting", p.lighting, "SPEC", kLightingHelp + ", or sweep (default " + p.lighting + ")");
     cp.count("--frames", p.frames, 1, 10000, "simulated frames");
@@ -300,6 +306,7 @@ void CommandLine::declare() {
 
     BenchCalibrationOptions& k = o.benchCalibration;
     Command& ck = leaf(bench, "calibration", "the calibration's parts: sample extraction per camera, each solver", k.common);
+    ck.gl();
     seedJsonField(ck);
     k.sim.miscalibration = "random";
     simOptions(ck, k.sim);
@@ -323,6 +330,7 @@ void CommandLine::declare() {
     CLI::App* eval = group("eval", "accuracy against the simulator's truth over many random cases");
     EvalPerceptionOptions& p = o.evalPerception;
     Command& c = leaf(eval, "perception", "the vision against the truth: lines, circle, ball, per lighting", p.common);
+    c.gl();
     seedJsonField(c);
     c.count("--trials", p.trials, 1, 10000, "random scenes, each rendered by both cameras");
     c.text("--lighting", p.lighting, "SPEC", "sweep (every preset of the sweep) or " + kLightingHelp + " (default sweep)");
@@ -344,6 +352,7 @@ void CommandLine::declare() {
 
     EvalCalibrationOptions& k = o.evalCalibration;
     Command& ck = leaf(eval, "calibration", "the robot program calibrates itself (phase 1) with random offsets, lightings and start sides: errors against the injected truth", k.common);
+    ck.gl();
     seedJsonField(ck);
     ck.count("--trials", k.trials, 1, 10000, "random cases");
     ck.text("--lighting", k.lighting, "SPEC", "sweep (a random preset of the sweep per case) or " + kLightingHelp + " (default sweep)");
@@ -358,6 +367,7 @@ void CommandLine::declare() {
                        "the robot program's self-localization and ball model against the truth: scripted walks, "
                        "kidnaps, rolling balls",
                        l.common);
+    cl.gl();
     seedJsonField(cl);
     cl.count("--trials", l.trials, 1, 10000, "trials; trial i has seed --seed + i");
     cl.text("--lighting", l.lighting, "SPEC",
@@ -377,6 +387,7 @@ void CommandLine::declare() {
                        "many seeded calibration challenges (both phases): per category median, p95 and worst, "
                        "terminations by reason, the failed trials by seed",
                        ec.common);
+    cc.gl();
     seedJsonField(cc);
     cc.count("--trials", ec.trials, 1, 100000, "trials; trial i has seed --seed + i (its offsets, start, balls, robot)");
     cc.text("--lighting", ec.lighting, "SPEC",
@@ -394,6 +405,7 @@ void CommandLine::declare() {
                        "many seeded 1vs1 games, our robot program at home: wins, draws, losses, points per minute and "
                        "by kind, referee calls by rule, falls and penalties per game",
                        em.common);
+    cm.gl();
     seedJsonField(cm);
     cm.text("--lighting", em.lighting, "SPEC",
             "sweep (game seed s takes preset s mod 7 of the sweep) or " + kLightingHelp + " (default sweep)");
@@ -464,6 +476,7 @@ void CommandLine::declare() {
     CLI::App* train = group("train", "fit a model to the simulator: ball (classifier), friction (ball roll)");
     TrainBallOptions& t = o.trainBall;
     Command& c = leaf(train, "ball", "the ball classifier (HOG + multi-layer perceptron) from simulated images", t.common);
+    c.gl();
     seedJsonField(c);
     c.count("--scenes", t.scenes, 5, 100000, "random scenes, each rendered by both cameras (every fifth held out)");
     c.count("--lightings", t.lightings, 1, 5, "random lightings per scene and camera");
@@ -495,6 +508,7 @@ void CommandLine::declare() {
   {
     ChallengeCommandOptions& k = o.challenge;
     Command& c = leaf(root, "calibration-challenge", "the whole Autonomous Calibration Challenge, headless: the robot program calibrates itself (phase 1), then reports both balls and walks to three spots (phase 2), scored as the referee scores", k.common);
+    c.gl();
     seedJsonField(c);
     simOptions(c, k.sim);
     c.choice("--start", k.start, {"left", "right", "seed"}, "the side line the robot starts on (seed: drawn from --seed)");
@@ -513,6 +527,7 @@ void CommandLine::declare() {
   {
     MatchOptions& k = o.match;
     Command& c = leaf(root, "match", "a simulated 1vs1 game of the 2021 rules: two robot programs, the GameController's packets, the referee's calls from the simulator's truth", k.common);
+    c.gl();
     seedJsonField(c);
     simOptions(c, k.sim, false);
     c.number("--seconds", k.seconds, 1, 7200, "s", "stop after this much simulated time (unless given: the whole game, both halves and any extensions)");
@@ -573,6 +588,7 @@ void CommandLine::declare() {
   {
     CalibrateOptions& k = o.calibrate;
     Command& c = leaf(root, "calibrate", "the robot program calibrates its six camera offsets from the goal box, from the challenge's start (sim): true against estimated", k.common);
+    c.gl();
     seedJsonField(c);
     simOptions(c, k.sim);
     c.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "least-squares solver");
