@@ -23,6 +23,23 @@
 
 namespace nao::cli {
 
+namespace {
+
+// Where a run's wall time went, as shares of it: rendering, cognition, motion, and the rest
+// (physics, the backend, the images' hand-off).
+std::map<std::string, double> wallShares(const sim::SimRunResult& r) {
+  auto sum = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / 1000; };
+  const double wall = std::max(r.wallSeconds, 1e-9);
+  const double render = sum(r.renderMsTop) + sum(r.renderMsBottom), cognition = sum(r.cognitionMs),
+               motion = sum(r.motionMs);
+  return {{"render", render / wall},
+          {"cognition", cognition / wall},
+          {"motion", motion / wall},
+          {"physics_and_rest", 1 - (render + cognition + motion) / wall}};
+}
+
+}  // namespace
+
 int benchSimCommand(const BenchSimOptions& options) {
   const FieldDimensions field = fieldFrom(options.common);
   const sim::Lighting lighting = lightingFrom(options.lighting);
@@ -48,12 +65,17 @@ int benchSimCommand(const BenchSimOptions& options) {
   o.cameras = true;
   o.seconds = std::min(seconds, 10.0);
   std::vector<double> top, bottom;
+  std::vector<sim::RenderStages> stagesTop, stagesBottom;
+  std::map<std::string, std::vector<double>> shares;
   std::string glVendor, glRenderer, glPlatform;
   for (int i = 0; i < repeats; ++i) {
     std::fprintf(stderr, "bench sim: camera run %d/%d\n", i + 1, repeats);
     const auto r = sim::runSim(o);
     cameraRtf.push_back(r.simSeconds / r.wallSeconds);
     top.insert(top.end(), r.renderMsTop.begin(), r.renderMsTop.end());
+    stagesTop.insert(stagesTop.end(), r.renderStagesTop.begin(), r.renderStagesTop.end());
+    stagesBottom.insert(stagesBottom.end(), r.renderStagesBottom.begin(), r.renderStagesBottom.end());
+    for (const auto& [part, share] : wallShares(r)) shares[part].push_back(share);
     glVendor = r.glVendor;
     glRenderer = r.glRenderer;
     glPlatform = r.glPlatform;
@@ -72,6 +94,23 @@ int benchSimCommand(const BenchSimOptions& options) {
     j["gl_vendor"] = glVendor;
     j["gl_renderer"] = glRenderer;
     j["gl_platform"] = glPlatform;
+  }
+  if (options.profile) {
+    auto stages = [](const std::vector<sim::RenderStages>& v) {
+      std::map<std::string, std::vector<double>> ms;
+      for (const sim::RenderStages& s : v) {
+        ms["scene"].push_back(s.scene);
+        ms["draw"].push_back(s.draw);
+        ms["read"].push_back(s.read);
+        ms["yuyv"].push_back(s.convert);
+        ms["noise"].push_back(s.noise);
+      }
+      nlohmann::json out = nlohmann::json::object();
+      for (const auto& [k, x] : ms) out[k] = sim::median(x);
+      return out;
+    };
+    j["profile"]["render_stage_ms_median"] = {{"top", stages(stagesTop)}, {"bottom", stages(stagesBottom)}};
+    for (const auto& [part, v] : shares) j["profile"]["camera_run_wall_share"][part] = sim::median(v);
   }
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
@@ -136,16 +175,8 @@ int benchProgramCommand(const BenchProgramOptions& options) {
                                              {"render_ms_bottom", quantile(r.renderMsBottom, 0.5)},
                                              {"rtf", r.wallSeconds > 0 ? r.simSeconds / r.wallSeconds : 0.0}};
     // Where the wall time went, as shares of the same run (robust to the machine's load).
-    auto sum = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / 1000; };
-    const double wall = std::max(r.wallSeconds, 1e-9);
-    const double render = sum(r.renderMsTop) + sum(r.renderMsBottom), cognition = sum(r.cognitionMs),
-                 motion = sum(r.motionMs);
-    const std::map<std::string, double> shares = {{"render", render / wall},
-                                                  {"cognition", cognition / wall},
-                                                  {"motion", motion / wall},
-                                                  {"physics_and_rest", 1 - (render + cognition + motion) / wall}};
     nlohmann::json run;
-    for (const auto& [k, v] : shares) {
+    for (const auto& [k, v] : wallShares(r)) {
       figures["wall_share_" + k].push_back(v);
       run["wall_share"][k] = round4(v);
     }

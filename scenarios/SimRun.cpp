@@ -80,6 +80,7 @@ SimRunResult runSim(const SimRunOptions& options) {
                                               res.height, options.lighting, cam, time, noiseRng);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
       (cam == CameraId::Top ? result.renderMsTop : result.renderMsBottom).push_back(ms);
+      (cam == CameraId::Top ? result.renderStagesTop : result.renderStagesBottom).push_back(renderer->lastStages());
       return img;
     });
   }

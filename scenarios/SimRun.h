@@ -14,6 +14,7 @@
 #include "representations/modeling/BallModel.h"
 #include "representations/modeling/RobotPose.h"
 #include "robot/Debug.h"
+#include "sim/CameraRenderer.h"
 #include "sim/Lighting.h"
 
 namespace nao::sim {
@@ -51,6 +52,7 @@ struct SimRunResult {
   int imagesTop = 0, imagesBottom = 0;  // delivered by the simulated cameras
   long imagesProcessedTop = 0, imagesProcessedBottom = 0;  // run through the robot program's cognition
   std::vector<double> renderMsTop, renderMsBottom;
+  std::vector<RenderStages> renderStagesTop, renderStagesBottom;  // each image's, as renderMs*
   std::string glVendor, glRenderer, glPlatform;  // the renderer's OpenGL, when cameras ran
   bool fell = false;
   double torsoHeightMin = 0, torsoHeightMax = 0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -97,6 +98,7 @@ struct CameraRenderer::Impl {
   mjvOption option;
   mjvCamera camera;
   std::vector<std::uint8_t> pixels;
+  RenderStages stages;
 
   void bind(const mjModel* m) {
     const std::array<int, 4> size{m->ngeom, m->nmesh, m->ntex, m->nmat};
@@ -127,6 +129,7 @@ struct CameraRenderer::Impl {
   }
 };
 
+const RenderStages& CameraRenderer::lastStages() const { return impl_->stages; }
 std::string CameraRenderer::glVendor() const { return impl_->gl->vendor(); }
 std::string CameraRenderer::glRenderer() const { return impl_->gl->renderer(); }
 std::string CameraRenderer::glPlatform() const { return impl_->gl->platform(); }
@@ -164,6 +167,13 @@ cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int wid
     throw Error(kWhere, "image size " + std::to_string(width) + "x" + std::to_string(height) +
                             " exceeds the offscreen buffer " + std::to_string(I.con.offWidth) + "x" +
                             std::to_string(I.con.offHeight) + " (SceneSpec camera resolutions)");
+  using Clock = std::chrono::steady_clock;
+  auto t = Clock::now();
+  auto lap = [&t](double& ms) {
+    const auto now = Clock::now();
+    ms = std::chrono::duration<double, std::milli>(now - t).count();
+    t = now;
+  };
   applyLighting(m, d, lighting);
   I.camera.type = mjCAMERA_FIXED;
   I.camera.fixedcamid = mjCameraId;
@@ -178,8 +188,10 @@ cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int wid
   I.scene.flags[mjRND_IDCOLOR] = 0;
   I.scene.flags[mjRND_CULL_FACE] = 1;  // a camera inside its head geom sees out, not the head's inside
   const mjrRect viewport{0, 0, width, height};
+  lap(I.stages.scene);
   mjr_setBuffer(mjFB_OFFSCREEN, &I.con);
   mjr_render(viewport, &I.scene, &I.con);
+  lap(I.stages.draw);
   I.pixels.resize(static_cast<std::size_t>(width) * height * 3);
   mjr_readPixels(I.pixels.data(), nullptr, viewport, &I.con);
   // OpenGL rows run bottom-up; flip so that row 0 is the top.
@@ -187,6 +199,7 @@ cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int wid
   const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
   for (int r = 0; r < height; ++r)
     std::copy_n(I.pixels.data() + (height - 1 - r) * rowBytes, rowBytes, rgb.ptr<std::uint8_t>(r));
+  lap(I.stages.read);
   return rgb;
 }
 
@@ -194,8 +207,13 @@ CameraImage CameraRenderer::renderImage(mjModel* m, mjData* d, int mjCameraId, i
                                         const Lighting& lighting, CameraId camera, double timestamp,
                                         std::mt19937_64& rng) {
   if (width % 2 != 0) throw Error(kWhere, "YUYV needs an even image width, got " + std::to_string(width));
-  CameraImage image = cameraImageFromRgb(renderRgb(m, d, mjCameraId, width, height, lighting), camera, timestamp);
+  const cv::Mat rgb = renderRgb(m, d, mjCameraId, width, height, lighting);
+  const auto t0 = std::chrono::steady_clock::now();
+  CameraImage image = cameraImageFromRgb(rgb, camera, timestamp);
+  const auto t1 = std::chrono::steady_clock::now();
   addSensorNoise(image, lighting.noise, rng);
+  impl_->stages.convert = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  impl_->stages.noise = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
   return image;
 }
 

@@ -26,6 +26,13 @@ void applyLighting(mjModel_* m, mjData_* d, const Lighting& lighting);
 // drawn from rng (approximately Gaussian: a sum of four uniforms, bounded at 3.5 sigma).
 void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng);
 
+// Where a camera image's time went (ms): the scene's update from the state, the draw calls,
+// reading the pixels back with the row flip (it waits for the drawing to finish), the YUYV
+// conversion, the sensor noise. renderRgb sets the first three.
+struct RenderStages {
+  double scene = 0, draw = 0, read = 0, convert = 0, noise = 0;
+};
+
 class CameraRenderer {
  public:
   // Creates the context and its offscreen buffer (m->vis.global.offwidth x offheight) and
@@ -46,6 +53,8 @@ class CameraRenderer {
   // sensor noise of lighting.noise from rng: the same rng state gives the same bytes.
   CameraImage renderImage(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting,
                           CameraId camera, double timestamp, std::mt19937_64& rng);
+
+  const RenderStages& lastStages() const;
 
   // The OpenGL that renders: GL_VENDOR, GL_RENDERER, and the platform ("osmesa",
   // "egl-device", "egl-surfaceless"; sim/GlContext.h).

@@ -100,4 +100,28 @@ TEST(CliJson, BenchMatchTimesBothPerceptModesSideBySide) {
   EXPECT_LT(j["wall_share"]["oracle"]["oracle_views"].get<double>(), 0.3) << o.out;
 }
 
+// bench sim --profile: each camera image's stages add up to its render time, and the camera
+// runs' wall shares to one.
+TEST(CliJson, BenchSimProfileSplitsTheRenderIntoItsStages) {
+  const Output o = runJson("bench sim --seconds 1 --repeats 1 --profile");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto j = nlohmann::json::parse(o.out);
+  const auto& stages = j["profile"]["render_stage_ms_median"];
+  for (const char* camera : {"top", "bottom"}) {
+    double sum = 0;
+    for (const char* stage : {"scene", "draw", "read", "yuyv", "noise"}) {
+      ASSERT_TRUE(stages[camera].contains(stage)) << camera << " " << stage;
+      EXPECT_GT(stages[camera][stage].get<double>(), 0) << camera << " " << stage;
+      sum += stages[camera][stage].get<double>();
+    }
+    const double total = j[std::string("render_ms_") + camera].get<double>();
+    EXPECT_GT(sum, 0.6 * total) << camera << ": " << stages[camera].dump();
+    EXPECT_LT(sum, 1.4 * total) << camera << ": " << stages[camera].dump();
+  }
+  double shares = 0;
+  for (const auto& [part, share] : j["profile"]["camera_run_wall_share"].items()) shares += share.get<double>();
+  EXPECT_NEAR(shares, 1.0, 1e-6);
+  EXPECT_GT(j["profile"]["camera_run_wall_share"]["render"].get<double>(), 0.3);
+}
+
 }  // namespace

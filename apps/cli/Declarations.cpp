@@ -264,6 +264,9 @@ void CommandLine::declare() {
     c.inputFile("--model", s.model, "the robot's MJCF (default models/nao_v6.xml)");
     c.number("--seconds", s.seconds, 1, 600, "s", "simulated seconds per physics run (camera runs: at most 10)");
     c.count("--repeats", s.repeats, 1, 20, "runs per figure; the median is reported");
+    c.flag("--profile", s.profile,
+           "where the time goes: each camera image's stages (scene update, draw, read-back, YUYV, noise) and the "
+           "camera runs' wall shares (render, cognition, motion, physics and the rest)");
 
     BenchProgramOptions& g = o.benchProgram;
     Command& cg = leaf(bench, "program",

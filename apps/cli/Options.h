@@ -56,6 +56,7 @@ struct BenchSimOptions {
   std::string lighting = "default", model;
   double seconds = 20;
   int repeats = 3;
+  bool profile = false;
 };
 
 struct BenchProgramOptions {
