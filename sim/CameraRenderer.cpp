@@ -11,7 +11,6 @@
 
 #include "robot/Error.h"
 #include "sim/GlContext.h"
-#include "sim/ImageIO.h"
 
 namespace nao::sim {
 
@@ -55,20 +54,6 @@ void applyLighting(mjModel* m, mjData* d, const Lighting& lighting) {
   m->light_active[sun] = 1;
   m->light_castshadow[sun] = lighting.shadows ? 1 : 0;
 }
-
-namespace {
-
-// std::clamp(std::lround(v), 0L, 255L) without lround's library call, which took a third of the
-// noise pass (bench sim); the same value for every v.
-std::uint8_t roundToByte(double v) {
-  if (!(v > 0)) return 0;
-  if (v >= 255) return 255;
-  int r = static_cast<int>(v + 0.5);
-  if (r - 0.5 > v) --r;  // v + 0.5 rounded up to the next integer in its last bit
-  return static_cast<std::uint8_t>(r);
-}
-
-}  // namespace
 
 void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng) {
   if (!(sigma > 0)) return;
@@ -156,8 +141,8 @@ CameraRenderer::CameraRenderer(const mjModel* m) : impl_(std::make_unique<Impl>(
 
 CameraRenderer::~CameraRenderer() = default;
 
-cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int width, int height,
-                                  const Lighting& lighting) {
+void CameraRenderer::drawAndRead(mjModel* m, mjData* d, int mjCameraId, int width, int height,
+                                 const Lighting& lighting) {
   Impl& I = *impl_;
   if (mjCameraId < 0 || mjCameraId >= m->ncam)
     throw Error(kWhere,
@@ -194,12 +179,18 @@ cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int wid
   lap(I.stages.draw);
   I.pixels.resize(static_cast<std::size_t>(width) * height * 3);
   mjr_readPixels(I.pixels.data(), nullptr, viewport, &I.con);
+  lap(I.stages.read);
+}
+
+cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int width, int height,
+                                  const Lighting& lighting) {
+  Impl& I = *impl_;
+  drawAndRead(m, d, mjCameraId, width, height, lighting);
   // OpenGL rows run bottom-up; flip so that row 0 is the top.
   cv::Mat rgb(height, width, CV_8UC3);
   const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
   for (int r = 0; r < height; ++r)
     std::copy_n(I.pixels.data() + (height - 1 - r) * rowBytes, rowBytes, rgb.ptr<std::uint8_t>(r));
-  lap(I.stages.read);
   return rgb;
 }
 
@@ -207,13 +198,26 @@ CameraImage CameraRenderer::renderImage(mjModel* m, mjData* d, int mjCameraId, i
                                         const Lighting& lighting, CameraId camera, double timestamp,
                                         std::mt19937_64& rng) {
   if (width % 2 != 0) throw Error(kWhere, "YUYV needs an even image width, got " + std::to_string(width));
-  const cv::Mat rgb = renderRgb(m, d, mjCameraId, width, height, lighting);
+  Impl& I = *impl_;
+  drawAndRead(m, d, mjCameraId, width, height, lighting);
   const auto t0 = std::chrono::steady_clock::now();
-  CameraImage image = cameraImageFromRgb(rgb, camera, timestamp);
+  // Straight from OpenGL's bottom-up rows into the camera's YUYV bytes.
+  CameraImage image;
+  image.camera = camera;
+  image.width = width;
+  image.height = height;
+  image.timestamp = timestamp;
+  image.yuyv.resize(static_cast<std::size_t>(width) * height * 2);
+  const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
+  for (int r = 0; r < height; ++r) {
+    const std::uint8_t* in = I.pixels.data() + (height - 1 - r) * rowBytes;
+    std::uint8_t* out = image.yuyv.data() + static_cast<std::size_t>(r) * width * 2;
+    for (int c = 0; c < width; c += 2, in += 6, out += 4) yuyvPairFromRgb(in, out);
+  }
   const auto t1 = std::chrono::steady_clock::now();
   addSensorNoise(image, lighting.noise, rng);
-  impl_->stages.convert = std::chrono::duration<double, std::milli>(t1 - t0).count();
-  impl_->stages.noise = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
+  I.stages.convert = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  I.stages.noise = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
   return image;
 }
 

@@ -27,8 +27,8 @@ void applyLighting(mjModel_* m, mjData_* d, const Lighting& lighting);
 void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng);
 
 // Where a camera image's time went (ms): the scene's update from the state, the draw calls,
-// reading the pixels back with the row flip (it waits for the drawing to finish), the YUYV
-// conversion, the sensor noise. renderRgb sets the first three.
+// reading the pixels back (it waits for the drawing to finish), the YUYV conversion, the sensor
+// noise. renderRgb sets the first three.
 struct RenderStages {
   double scene = 0, draw = 0, read = 0, convert = 0, noise = 0;
 };
@@ -63,6 +63,9 @@ class CameraRenderer {
   std::string glPlatform() const;
 
  private:
+  // Renders into the GL buffer and reads it back into Impl::pixels (rows bottom-up).
+  void drawAndRead(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
