@@ -19,8 +19,6 @@ namespace nao::sim {
 
 namespace {
 
-std::uint8_t clampByte(double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); }
-
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -110,9 +108,9 @@ cv::Mat rgbFromYuyv(const cv::Mat& yuyv) {
       const double u = in[1] - 128.0, v = in[3] - 128.0;
       for (int k = 0; k < 2; ++k) {
         const double y = in[2 * k];
-        o[3 * k + 0] = clampByte(y + 1.402 * v);
-        o[3 * k + 1] = clampByte(y - 0.344136 * u - 0.714136 * v);
-        o[3 * k + 2] = clampByte(y + 1.772 * u);
+        o[3 * k + 0] = roundToByte(y + 1.402 * v);
+        o[3 * k + 1] = roundToByte(y - 0.344136 * u - 0.714136 * v);
+        o[3 * k + 2] = roundToByte(y + 1.772 * u);
       }
     }
   }
