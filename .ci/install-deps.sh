@@ -7,10 +7,11 @@ packages=(
   libosmesa6-dev         # off-screen software OpenGL for the simulated cameras
   libegl-dev libegl-mesa0  # --gl egl: EGL headers, Mesa's EGL (a GPU's or its software device)
   libeigen3-dev          # geometry
-  libopencv-dev          # image I/O, debug drawing
+  libopencv-dev          # image processing, debug drawing, the ball classifier
+  libjpeg62-turbo-dev zlib1g-dev  # sim/ImageIO: JPEG decoding, PNG's deflate (imgcodecs is not linked)
   libceres-dev           # least squares (calibration)
   libmsgpack-cxx-dev     # LoLA packets
-  libstb-dev             # stb_image: the robot executable's PNG/JPEG decoder (--cameras files:DIR)
+  libstb-dev             # stb_image: PNG reading and writing, the robot executable's PNG/JPEG decoder
   nlohmann-json3-dev     # JSON config and results
   libcli11-dev           # the declared command line (apps/cli/)
   libtinyxml2-dev        # MJCF scene assembly (prefixing robot copies)

@@ -134,6 +134,7 @@ int batchCommand(const BatchOptions& options) {
     return n;
   };
   std::size_t done = countDone();
+  std::size_t printed = done;  // the count of the last progress line
   const std::size_t total = plan.seeds.size(), doneBefore = done;
 
   const std::string exe = fs::read_symlink("/proc/self/exe").string();
@@ -173,7 +174,7 @@ int batchCommand(const BatchOptions& options) {
       const auto roundStart = std::chrono::steady_clock::now();
       const std::size_t roundBefore = done;
       auto lastPrint = roundStart;
-      std::size_t printed = done;
+      printed = done;
       while (runner->busy()) {
         if (interrupted) {
           std::fprintf(stderr, "batch: interrupted: stopping the tasks\n");
@@ -198,6 +199,8 @@ int batchCommand(const BatchOptions& options) {
     const auto statuses = runner->exitStatuses();
     std::vector<std::size_t> failed;
     done = countDone();
+    // The round's last count, however short the round was.
+    if (done != printed) std::fprintf(stderr, "batch: %zu/%zu seeds done\n", done, total);
     for (const auto& t : tasks) {
       const auto missing = readChunkRows(rowsFile(t.chunk), chunks[t.chunk]).missing;
       if (missing.empty()) continue;

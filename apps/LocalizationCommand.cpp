@@ -36,6 +36,7 @@ int evalLocalizationCommand(const EvalLocalizationOptions& options) {
   o.walkSeconds = options.seconds;
   o.kidnapEvery = options.kidnapEvery;
   o.rollEvery = options.rollEvery;
+  o.oracle = options.percepts == "oracle";
   o.progress = [](const nlohmann::json& row, int done, int total) {
     const nlohmann::json one = sim::aggregateLocalizationRows(std::vector<nlohmann::json>{row});
     std::string extra;

@@ -27,6 +27,7 @@ int matchCommand(const MatchOptions& options) {
   o.opponent = options.opponent;
   o.percepts = options.percepts;
   o.replay = !options.replay.empty();
+  o.imagesDir = options.images;
   if (!options.situation.empty()) {
     o.situation = sim::loadSituation(options.situation, o.halfSeconds);
     if (!o.situation->field.empty() && !options.common.has("--field")) {

@@ -6,7 +6,6 @@
 #include <iostream>
 #include <random>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"

@@ -18,6 +18,7 @@
 #include "scenarios/EvalRows.h"
 #include "scenarios/WalkEval.h"
 #include "sim/CameraRenderer.h"
+#include "sim/OracleCamera.h"
 #include "sim/SceneBuilder.h"
 #include "sim/SimBackend.h"
 #include "sim/World.h"
@@ -85,6 +86,7 @@ nlohmann::json localizationEvalSettings(const LocalizationEvalOptions& o) {
           {"walk_s", o.walkSeconds},
           {"kidnap_every", o.kidnapEvery},
           {"roll_every", o.rollEvery},
+          {"percepts", o.oracle ? "oracle" : "vision"},
           {"field", {{"length", o.field.length}, {"width", o.field.width}}}};
 }
 
@@ -154,15 +156,21 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
   }
   world.placeRobot(0, start, StandController::standPosture());
 
-  CameraRenderer renderer(world.model());
+  std::optional<CameraRenderer> renderer;  // the fast percept mode renders nothing
   std::mt19937_64 noiseRng(seed ^ 0x9e3779b97f4a7c15ULL);
   SimBackend backend(world, 0, true);
-  backend.setImageSource([&](CameraId cam, double time) {
-    const CameraResolution res = world.cameraResolution(cam);
-    return renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width, res.height,
-                                lighting, cam, time, noiseRng);
-  });
+  if (o.oracle) {
+    backend.setImageSource([&](CameraId cam, double) { return oracleImage(world, 0, cam); });
+  } else {
+    renderer.emplace(world.model());
+    backend.setImageSource([&](CameraId cam, double time) {
+      const CameraResolution res = world.cameraResolution(cam);
+      return renderer->renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width, res.height,
+                                   lighting, cam, time, noiseRng);
+    });
+  }
   RobotProgramConfig config;
+  if (o.oracle) config.providers["CameraPercepts"] = "OracleVision";
   config.calibration = o.randomize ? told : calibration::CalibrationStore().offsetsFor(backend.robotInfo().headId);
   config.headId = backend.robotInfo().headId;
   config.field = o.field;

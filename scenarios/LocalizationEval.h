@@ -38,6 +38,7 @@ struct LocalizationEvalOptions {
   double walkSeconds = 20;    // the scripted walk of every trial (simulated s)
   int kidnapEvery = 4;        // trial seeds with s % kidnapEvery == kidnapEvery - 1 end with a kidnap; 0: none
   int rollEvery = 4;          // trial seeds with s % rollEvery == 1 end with a rolling ball (unless kidnapped); 0: none
+  bool oracle = false;        // the fast percept mode (OracleVision, nothing rendered) instead of the vision
   std::function<void(const nlohmann::json& row, int done, int total)> progress;  // after each trial
   DebugChannels* debug = nullptr;  // the robot program's debug channels (not owned); null: none
 };

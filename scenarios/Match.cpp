@@ -19,7 +19,10 @@
 #include "scenarios/MatchReplay.h"
 #include "scenarios/RobotRules.h"
 #include "scenarios/WalkEval.h"
+#include "robot/OutputFiles.h"
 #include "sim/CameraRenderer.h"
+#include "sim/FieldView.h"
+#include "sim/ImageIO.h"
 #include "sim/OracleCamera.h"
 #include "sim/SimBackend.h"
 #include "sim/World.h"
@@ -45,6 +48,31 @@ constexpr int kBalls = 4;
 const char* kTeamNames[2] = {"home", "away"};
 
 // The x sign of `team`'s own half.
+// A robot's beliefs (its RobotPose and BallModel), from its own frame, where it attacks +x, to
+// the field's: `sign` is -1 where the two differ.
+EstimateOverlay beliefInField(const Blackboard& cognition, double sign) {
+  EstimateOverlay belief;
+  if (cognition.has<RobotPose>() && cognition.read<RobotPose>().valid) {
+    const RobotPose& b = cognition.read<RobotPose>();
+    belief.pose = Eigen::Vector3d(sign * b.pose.x, sign * b.pose.y, Pose2::wrap(b.pose.theta + (sign < 0 ? M_PI : 0.0)));
+    belief.positionCovariance = b.covariance.topLeftCorner<2, 2>();
+  }
+  if (cognition.has<BallModel>() && cognition.read<BallModel>().fieldValid)
+    belief.ball = sign * cognition.read<BallModel>().fieldPosition;
+  return belief;
+}
+
+// Jerseys in the GameController protocol's field player colours (codes 0..9: blue, red, yellow,
+// black, white, green, orange, purple, brown, grey), worn on the torso.
+const char* const kColourNames[10] = {"blue", "red", "yellow", "black", "white", "green", "orange", "purple", "brown", "grey"};
+Eigen::Vector4d jerseyColour(int code) {
+  static const double rgb[10][3] = {{0.10, 0.25, 0.85}, {0.85, 0.10, 0.10}, {0.95, 0.85, 0.10}, {0.08, 0.08, 0.08},
+                                    {0.97, 0.97, 0.97}, {0.10, 0.60, 0.15}, {0.98, 0.50, 0.05}, {0.50, 0.15, 0.65},
+                                    {0.45, 0.28, 0.12}, {0.50, 0.50, 0.50}};
+  const int c = code >= 0 && code < 10 ? code : 9;
+  return {rgb[c][0], rgb[c][1], rgb[c][2], 1.0};
+}
+
 double ownSign(int team, bool homeNegative) { return (team == 0) == homeNegative ? -1.0 : 1.0; }
 
 // Before each half and on a penalty's return: on the side line nearest the GameController
@@ -209,13 +237,27 @@ MatchResult runMatch(const MatchOptions& o) {
   gcConfig.teams = o.teams;
   gcConfig.halfSeconds = o.halfSeconds;
   GameControllerSim gc(gcConfig);
+  for (int r = 0; r < 2; ++r) world.setGeomColour(r, "torso_geom", jerseyColour(gcConfig.colours[static_cast<std::size_t>(r)]));
   BallRules ballRules(f);
   nlohmann::json events = nlohmann::json::array();
+  const bool pictures = !o.imagesDir.empty();
+  std::vector<std::string> picturesDue;  // --images: pictures to take at the end of the step
+  std::function<void(const std::string&)> takePictures;  // set once the robots exist
   auto event = [&](nlohmann::json e) {
     e["t"] = world.time();
+    if (pictures && (e["kind"] == "point" || e["kind"] == "call")) {
+      char name[32];
+      std::snprintf(name, sizeof name, "event_%03zu_", static_cast<std::size_t>(events.size()));  // its index in the log
+      const std::string detail = e["kind"] == "point" ? e["team"].get<std::string>() : e["rule"].get<std::string>();
+      // At once, before the referee moves the ball or a robot in reply.
+      const std::string picture = std::string(name) + e["kind"].get<std::string>() + "_" + detail;
+      if (takePictures) takePictures(picture);
+      else picturesDue.push_back(picture);
+    }
     events.push_back(std::move(e));
   };
   MatchWallTime wall;
+  std::array<std::array<CameraImage, 2>, 2> lastImages;  // each robot's last top and bottom image (--images)
   std::array<Player, 2> players;
   for (int r = 0; r < 2; ++r) {
     Player& p = players[static_cast<std::size_t>(r)];
@@ -229,11 +271,13 @@ MatchResult runMatch(const MatchOptions& o) {
         return oracleImage(world, r, cam);
       });
     else if (!p.scripted)
-      p.backend->setImageSource([&world, &renderer, &o, &noise, &wall, r](CameraId cam, double time) {
+      p.backend->setImageSource([&world, &renderer, &o, &noise, &wall, &lastImages, pictures, r](CameraId cam, double time) {
         const Stopwatch watch(wall.images);
         const CameraResolution res = world.cameraResolution(cam);
-        return renderer->renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width, res.height,
-                                    o.lighting, cam, time, noise);
+        CameraImage image = renderer->renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width,
+                                                  res.height, o.lighting, cam, time, noise);
+        if (pictures) lastImages[static_cast<std::size_t>(r)][cam == CameraId::Top ? 0 : 1] = image;
+        return image;
       });
     RobotProgramConfig config;
     config.field = f;
@@ -311,6 +355,29 @@ MatchResult runMatch(const MatchOptions& o) {
   }
   double playingSeconds = 0, previous = world.time(), nextFrame = 0;
   std::vector<ReplayFrame> frames;
+  // --images: the field from above with the truth and both robots' beliefs (mapped from each
+  // robot's own frame, where it attacks +x), and the robots' last camera images.
+  nlohmann::json picturesWritten = nlohmann::json::array();
+  double nextPicture = 10;
+  if (pictures) io::makeDirectories(o.imagesDir);
+  takePictures = [&](const std::string& name) {
+    std::vector<Eigen::Vector3d> balls;
+    for (int i = 0; i < kBalls; ++i) balls.push_back(world.ballPosition(i));
+    cv::Mat view = drawFieldView(world.field(), {world.robotPose(0), world.robotPose(1)}, balls);
+    for (int r = 0; r < 2; ++r)
+      drawEstimates(view, world.field(),
+                    beliefInField(players[static_cast<std::size_t>(r)].program->cognitionBoard(), -ownSign(r, homeNegative)));
+    auto write = [&](const std::string& file, auto&& image) {
+      writePng(o.imagesDir + "/" + file, image);
+      picturesWritten.push_back(file);
+    };
+    write(name + "_field.png", view);
+    for (int r = 0; r < 2; ++r)
+      for (int c = 0; c < 2; ++c)
+        if (lastImages[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)].valid())
+          write(name + "_" + kTeamNames[r] + (c == 0 ? "_top.png" : "_bottom.png"),
+                lastImages[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)]);
+  };
   bool coinTossed = false;
   const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   while (world.time() < endTime - 1e-9 && !gc.finished()) {
@@ -526,18 +593,12 @@ MatchResult runMatch(const MatchOptions& o) {
         ReplayFrame::Robot& rf = fr.robots[static_cast<std::size_t>(r)];
         rf.pose = world.robotPose(r);
         rf.penalised = gc.penalised(r, 1);
-        // The robot's beliefs, from its own frame (it attacks +x) to the field's.
-        const double sign = -ownSign(r, homeNegative);
-        const Blackboard& cognition = players[static_cast<std::size_t>(r)].program->cognitionBoard();
-        if (cognition.has<RobotPose>() && cognition.read<RobotPose>().valid) {
-          const Pose2& b = cognition.read<RobotPose>().pose;
-          rf.beliefValid = true;
-          rf.belief = {sign * b.x, sign * b.y, Pose2::wrap(b.theta + (sign < 0 ? M_PI : 0.0))};
-        }
-        if (cognition.has<BallModel>() && cognition.read<BallModel>().fieldValid) {
-          rf.ballValid = true;
-          rf.ball = sign * cognition.read<BallModel>().fieldPosition;
-        }
+        const EstimateOverlay belief =
+            beliefInField(players[static_cast<std::size_t>(r)].program->cognitionBoard(), -ownSign(r, homeNegative));
+        rf.beliefValid = belief.pose.has_value();
+        if (belief.pose) rf.belief = *belief.pose;
+        rf.ballValid = belief.ball.has_value();
+        if (belief.ball) rf.ball = *belief.ball;
       }
       for (int i = 0; i < kBalls; ++i) fr.balls.push_back(world.ballPosition(i).head<2>());
       frames.push_back(std::move(fr));
@@ -547,7 +608,18 @@ MatchResult runMatch(const MatchOptions& o) {
                         std::to_string(gc.score(1)) + ", " + std::to_string(static_cast<int>(gc.secsRemaining())) + " s left");
       nextProgress = t + 10;
     }
+    if (pictures) {
+      if (t >= nextPicture - 1e-9) {
+        char name[32];
+        std::snprintf(name, sizeof name, "t%04.0f", nextPicture);
+        picturesDue.push_back(name);
+        nextPicture += 10;
+      }
+      for (const std::string& name : picturesDue) takePictures(name);
+      picturesDue.clear();
+    }
   }
+  if (pictures) takePictures("final");
   if (gc.finished() && gc.winner() < 0) {
     gc.coinToss(static_cast<int>(toss() % 2), world.time());
     coinTossed = true;
@@ -579,7 +651,9 @@ MatchResult runMatch(const MatchOptions& o) {
       std::nth_element(e.begin(), e.begin() + static_cast<long>(e.size() / 2), e.end());
       median = e[e.size() / 2];
     }
+    const int colour = gcConfig.colours[static_cast<std::size_t>(r)];
     robots.push_back({{"team", kTeamNames[r]},
+                      {"jersey", kColourNames[colour >= 0 && colour < 10 ? colour : 9]},
                       {"falls", p.falls},
                       {"penalties", p.penalties},
                       {"distance_m", p.distance},
@@ -601,6 +675,7 @@ MatchResult runMatch(const MatchOptions& o) {
                  {"opponent", o.opponent},
                  {"percepts", o.percepts},
                  {"seed", o.seed}};
+  if (pictures) result.json["images"] = picturesWritten;
   if (o.replay) result.replay = replayData(f, frames, events);
   return result;
 }

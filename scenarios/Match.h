@@ -34,6 +34,10 @@ struct MatchOptions {
   // baseline: to the ball, kick at the goal) or a configuration folder (modules.json, parameters/).
   std::string opponent = "self";
   bool replay = false;        // record MatchResult::replay (scenarios/MatchReplay.h)
+  // Non-empty: pictures into this folder (made if missing): the field from above (true robots
+  // and balls, each robot's believed pose and ball) every 10 simulated s, at each point and
+  // referee call and at the end; with the vision, each robot's two camera images at those moments.
+  std::string imagesDir;
   // "vision": both cameras rendered and seen by the vision; "oracle": the fast percept mode
   // (no rendering; OracleVision makes the percepts from the simulator's view, sim/OracleCamera.h).
   std::string percepts = "vision";

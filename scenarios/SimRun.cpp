@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <random>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "controllers/RobotProgram.h"
 #include "controllers/StandController.h"

@@ -85,6 +85,29 @@ struct Egl {
   }
 };
 
+// libOSMesa's entry points, resolved by hand like EGL's: linked, it would load LLVM into every
+// process, rendering or not (90 ms at each start).
+struct OsMesa {
+  void* lib = nullptr;
+  decltype(&OSMesaCreateContextExt) createContextExt = nullptr;
+  decltype(&OSMesaDestroyContext) destroyContext = nullptr;
+  decltype(&OSMesaMakeCurrent) makeCurrent = nullptr;
+  decltype(&OSMesaGetProcAddress) getProcAddress = nullptr;
+
+  // Empty, or why libOSMesa cannot be used.
+  std::string load() {
+    for (const char* name : {"libOSMesa.so.8", "libOSMesa.so"})
+      if ((lib = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;
+    if (!lib) return "libOSMesa.so.8 not found (Debian: libosmesa6)";
+    createContextExt = reinterpret_cast<decltype(createContextExt)>(dlsym(lib, "OSMesaCreateContextExt"));
+    destroyContext = reinterpret_cast<decltype(destroyContext)>(dlsym(lib, "OSMesaDestroyContext"));
+    makeCurrent = reinterpret_cast<decltype(makeCurrent)>(dlsym(lib, "OSMesaMakeCurrent"));
+    getProcAddress = reinterpret_cast<decltype(getProcAddress)>(dlsym(lib, "OSMesaGetProcAddress"));
+    if (!createContextExt || !destroyContext || !makeCurrent || !getProcAddress) return "libOSMesa lacks a core function";
+    return "";
+  }
+};
+
 // The EGL device to open: MUJOCO_EGL_DEVICE_ID's, else the first that is not Mesa's software
 // device (a GPU), else the first. Empty with why when there is none.
 std::string chooseDevice(Egl& egl, EGLDeviceEXT& device, bool& software) {
@@ -149,6 +172,7 @@ GlApi glApi() {
 struct GlContext::Impl {
   std::string platform, vendor, renderer;
   // OSMesa
+  OsMesa mesa;
   OSMesaContext osmesa = nullptr;
   std::vector<unsigned char> buffer;  // its default framebuffer
   int bufferWidth = 0, bufferHeight = 0;
@@ -218,11 +242,16 @@ struct GlContext::Impl {
   }
 
   std::string tryOsMesa() {
-    osmesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 8, nullptr);
+    if (!mesa.lib) {
+      if (std::string why = mesa.load(); !why.empty()) return why;
+    }
+    osmesa = mesa.createContextExt(OSMESA_RGBA, 24, 8, 8, nullptr);
     if (!osmesa) return "OSMesaCreateContextExt failed";
     resize(1, 1);
+    // From now on MuJoCo's loader must find OSMesaGetProcAddress: make the library's symbols global.
+    if (!dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_GLOBAL | RTLD_NOLOAD)) dlopen("libOSMesa.so", RTLD_NOW | RTLD_GLOBAL | RTLD_NOLOAD);
     platform = "osmesa";
-    const auto get = reinterpret_cast<GetString>(OSMesaGetProcAddress("glGetString"));
+    const auto get = reinterpret_cast<GetString>(mesa.getProcAddress("glGetString"));
     vendor = glString(get, GL_VENDOR);
     renderer = glString(get, GL_RENDERER);
     return "";
@@ -234,7 +263,7 @@ struct GlContext::Impl {
       bufferHeight = std::max(height, bufferHeight);
       buffer.assign(static_cast<std::size_t>(bufferWidth) * bufferHeight * 4, 0);
     }
-    if (!OSMesaMakeCurrent(osmesa, buffer.data(), GL_UNSIGNED_BYTE, bufferWidth, bufferHeight))
+    if (!mesa.makeCurrent(osmesa, buffer.data(), GL_UNSIGNED_BYTE, bufferWidth, bufferHeight))
       throw Error(kWhere, "OSMesaMakeCurrent failed");
   }
 };
@@ -259,7 +288,7 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
 
 GlContext::~GlContext() {
   Impl& I = *impl_;
-  if (I.osmesa) OSMesaDestroyContext(I.osmesa);
+  if (I.osmesa) I.mesa.destroyContext(I.osmesa);
   if (I.context != EGL_NO_CONTEXT) {
     I.egl.makeCurrent(I.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     I.egl.destroyContext(I.display, I.context);

@@ -1,16 +1,44 @@
 #include "sim/ImageIO.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cmath>
+#include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <vector>
+
+#include <jpeglib.h>
+#include <zlib.h>
+
+// stb's decoder and encoder, private to this file (the robot program's ImageDecoder has its own).
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#define STBI_ONLY_BMP
+#define STBI_ONLY_PNM
+#define STBI_NO_STDIO
+#define STBI_MAX_DIMENSIONS 8192
+#include <stb/stb_image.h>
+namespace {
+// PNG's deflate by zlib at its fastest level (as imgcodecs wrote them): stb's own is slower.
+unsigned char* zlibCompress(unsigned char* data, int size, int* outSize, int /*quality*/) {
+  uLongf bound = compressBound(static_cast<uLong>(size));
+  auto* out = static_cast<unsigned char*>(std::malloc(bound));
+  if (!out || compress2(out, &bound, data, static_cast<uLong>(size), Z_BEST_SPEED) != Z_OK) {
+    std::free(out);
+    return nullptr;
+  }
+  *outSize = static_cast<int>(bound);
+  return out;
+}
+}  // namespace
+#define STBIW_ZLIB_COMPRESS zlibCompress
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STBI_WRITE_NO_STDIO
+#include <stb/stb_image_write.h>
 
 #include "robot/Error.h"
 #include "robot/OutputFiles.h"
@@ -54,33 +82,80 @@ void checkComplete(const std::string& path, const std::vector<std::uint8_t>& byt
     throw Error(path, "truncated JPEG (no end-of-image marker)");
 }
 
-// libpng and libjpeg print their own warnings on stderr ("libpng warning: iCCP: ...", "Corrupt
-// JPEG data: ..."). Decoding with stderr caught keeps one image to at most one line: dropped when
-// the image decodes, folded into the error when it does not.
-cv::Mat decodeQuietly(const std::vector<std::uint8_t>& bytes, std::string& printed) {
-  std::fflush(stderr);
-  std::FILE* sink = std::tmpfile();
-  const int saved = sink ? ::dup(2) : -1;
-  if (saved >= 0) ::dup2(::fileno(sink), 2);
-  cv::Mat bgr;
-  std::string exception;
-  try {
-    bgr = cv::imdecode(bytes, cv::IMREAD_COLOR);
-  } catch (const cv::Exception& e) {
-    exception = e.err;
+// JPEG through libjpeg(-turbo), as OpenCV's imgcodecs decoded it (the same pixels, checked on the
+// real goal-box images), without loading imgcodecs and the 140 libraries it links (GDAL and
+// company: a quarter second at every process start). Errors jump back here instead of exiting;
+// the first warning ("Corrupt JPEG data: ...") goes into the error should the decode fail.
+struct JpegErrors {
+  jpeg_error_mgr manager;
+  std::jmp_buf jump;
+  std::string message;
+};
+
+void jpegFailed(j_common_ptr info) {
+  auto* errors = reinterpret_cast<JpegErrors*>(info->err);
+  char text[JMSG_LENGTH_MAX] = "";
+  info->err->format_message(info, text);
+  errors->message = text;
+  std::longjmp(errors->jump, 1);
+}
+
+void jpegWarning(j_common_ptr info, int level) {
+  auto* errors = reinterpret_cast<JpegErrors*>(info->err);
+  if (level >= 0 || !errors->message.empty()) return;  // trace messages, or not the first warning
+  char text[JMSG_LENGTH_MAX] = "";
+  info->err->format_message(info, text);
+  errors->message = text;
+}
+
+// RGB rows, or empty with `why` set.
+cv::Mat decodeJpeg(const std::vector<std::uint8_t>& bytes, std::string& why) {
+  jpeg_decompress_struct info{};
+  JpegErrors errors;
+  info.err = jpeg_std_error(&errors.manager);
+  errors.manager.error_exit = jpegFailed;
+  errors.manager.emit_message = jpegWarning;
+  cv::Mat rgb;  // constructed before the jump point: longjmp skips no destructor of it
+  if (setjmp(errors.jump)) {
+    jpeg_destroy_decompress(&info);
+    why = errors.message;
+    return cv::Mat();
   }
-  if (saved >= 0) {
-    std::fflush(stderr);
-    ::dup2(saved, 2);
-    ::close(saved);
-    std::rewind(sink);
-    char line[256] = "";
-    if (std::fgets(line, sizeof line, sink)) printed = line;
-    while (!printed.empty() && (printed.back() == '\n' || printed.back() == '\r')) printed.pop_back();
+  jpeg_create_decompress(&info);
+  jpeg_mem_src(&info, bytes.data(), static_cast<unsigned long>(bytes.size()));
+  jpeg_read_header(&info, TRUE);
+  info.out_color_space = JCS_RGB;
+  jpeg_start_decompress(&info);
+  if (info.output_width > 8192 || info.output_height > 8192) {
+    jpeg_destroy_decompress(&info);
+    why = "larger than 8192 pixels";
+    return cv::Mat();
   }
-  if (sink) std::fclose(sink);
-  if (!exception.empty()) printed = exception + (printed.empty() ? "" : "; " + printed);
-  return bgr;
+  rgb.create(static_cast<int>(info.output_height), static_cast<int>(info.output_width), CV_8UC3);
+  while (info.output_scanline < info.output_height) {
+    JSAMPROW row = rgb.ptr<std::uint8_t>(static_cast<int>(info.output_scanline));
+    jpeg_read_scanlines(&info, &row, 1);
+  }
+  jpeg_finish_decompress(&info);
+  jpeg_destroy_decompress(&info);
+  return rgb;
+}
+
+// PNG (and BMP, PNM) through stb_image: lossless, the same pixels as imgcodecs gave.
+cv::Mat decodeOther(const std::vector<std::uint8_t>& bytes, std::string& why) {
+  if (bytes.size() > (1u << 30)) {
+    why = "larger than 1 GiB";
+    return cv::Mat();
+  }
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels, 3);
+  if (!pixels) {
+    why = stbi_failure_reason();
+    return cv::Mat();
+  }
+  cv::Mat rgb = cv::Mat(height, width, CV_8UC3, pixels).clone();
+  stbi_image_free(pixels);
+  return rgb;
 }
 
 }  // namespace
@@ -140,16 +215,13 @@ cv::Mat rgbFromCameraImage(const CameraImage& image) {
 
 void writePng(const std::string& path, const cv::Mat& rgb) {
   if (rgb.empty() || rgb.type() != CV_8UC3) throw Error(path, "not an 8-bit RGB image");
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  // Always PNG, whatever the file name says.
-  std::vector<std::uint8_t> encoded;
-  try {
-    if (!cv::imencode(".png", bgr, encoded)) throw Error(path, "cannot encode PNG");
-  } catch (const cv::Exception& e) {
-    throw Error(path, std::string("cannot encode PNG: ") + e.err);
-  }
-  io::writeFile(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
+  const cv::Mat packed = rgb.isContinuous() ? rgb : rgb.clone();
+  // Always PNG, whatever the file name says (stb_image_write's filters, zlib's deflate).
+  std::string encoded;
+  const auto append = [](void* to, void* data, int size) { static_cast<std::string*>(to)->append(static_cast<const char*>(data), static_cast<std::size_t>(size)); };
+  if (!stbi_write_png_to_func(append, &encoded, packed.cols, packed.rows, 3, packed.data, packed.cols * 3))
+    throw Error(path, "cannot encode PNG");
+  io::writeFile(path, encoded);
 }
 
 void writePng(const std::string& path, const CameraImage& image) {
@@ -183,14 +255,12 @@ CameraImage readImage(const std::string& path, int width, int height, CameraId c
     return image;
   }
   checkComplete(path, bytes);
-  std::string printed;
-  cv::Mat bgr = decodeQuietly(bytes, printed);
-  if (bgr.empty() || bgr.cols < 2 || bgr.rows < 1)
-    throw Error(path, "not a readable PNG or JPEG image (corrupt or truncated?)" +
-                          (printed.empty() ? std::string() : ": " + printed));
-  if (bgr.cols % 2 != 0) bgr = bgr.colRange(0, bgr.cols - 1).clone();
-  cv::Mat rgb;
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  std::string why;
+  const bool jpeg = bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff;
+  cv::Mat rgb = jpeg ? decodeJpeg(bytes, why) : decodeOther(bytes, why);
+  if (rgb.empty() || rgb.cols < 2 || rgb.rows < 1)
+    throw Error(path, "not a readable PNG or JPEG image (corrupt or truncated?)" + (why.empty() ? std::string() : ": " + why));
+  if (rgb.cols % 2 != 0) rgb = rgb.colRange(0, rgb.cols - 1).clone();
   return cameraImageFromRgb(rgb, camera, 0);
 }
 

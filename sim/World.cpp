@@ -647,6 +647,14 @@ void World::setFloorFriction(double friction) {
     if (g == carpet || I.geomFoot[g] >= 0) I.m->geom_friction[3 * g] = friction;
 }
 
+bool World::setGeomColour(int robot, const std::string& geom, const Eigen::Vector4d& rgba) {
+  Impl& I = *impl_;
+  const int g = mj_name2id(I.m, mjOBJ_GEOM, (I.robot(robot).prefix + geom).c_str());
+  if (g < 0) return false;
+  for (int k = 0; k < 4; ++k) I.m->geom_rgba[4 * g + k] = static_cast<float>(std::clamp(rgba[k], 0.0, 1.0));
+  return true;
+}
+
 Eigen::Vector3d World::robotPose(int robot) const {
   const Eigen::Isometry3d t = torsoPose(robot);
   return {t.translation().x(), t.translation().y(), std::atan2(t.linear()(1, 0), t.linear()(0, 0))};

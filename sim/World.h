@@ -82,6 +82,9 @@ class World {
   double scaleLinkMasses(int robot, double spread, std::uint64_t seed);
   // Sliding friction of the feet on the carpet (and of the carpet for everything else).
   void setFloorFriction(double friction);
+  // The colour (RGBA, 0..1) of the robot's geom named `geom` (without its prefix): a team's
+  // jersey on "torso_geom". False when the robot's model has no such geom.
+  bool setGeomColour(int robot, const std::string& geom, const Eigen::Vector4d& rgba);
 
   // Ground truth.
   Eigen::Vector3d robotPose(int robot) const;            // (x, y, theta), docs/conventions.md

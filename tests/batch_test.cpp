@@ -1,8 +1,9 @@
 // nao-soccer batch (apps/Batch.h): the same aggregate as one uninterrupted evaluation on every
 // runner (processes here, GNU parallel, a real single-node Slurm from tools/slurm-local.sh), a
 // Slurm run killed half-way resumed with only its missing seeds, a crashed task rerun once, and
-// bad input refused with one line. The evaluation is eval localization with 5 s walks: a few
-// seconds a trial, and an aggregate of many figures.
+// bad input refused with one line. The evaluation is eval localization with 5 s walks in the fast
+// percept mode (the robot program's own localization, its percepts from OracleVision): a second
+// or two a trial, and an aggregate of many figures.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -30,7 +31,8 @@ using nao::cli::readChunkRows;
 using nao::cli::seedListText;
 using nao::test::runCommand;
 
-const std::string kEval = "eval localization --seconds 5 --kidnap-every 0 --roll-every 0 --lighting sweep";
+const std::string kEval =
+    "eval localization --seconds 5 --kidnap-every 0 --roll-every 0 --lighting sweep --percepts oracle";
 
 fs::path tempDir(const std::string& name) {
   const fs::path d = fs::path(::testing::TempDir()) / ("batch_test_" + name);
@@ -194,6 +196,7 @@ TEST_F(BatchRunners, EveryRunnerGivesTheAggregateOfOneUninterruptedRun) {
   const nlohmann::json single = readJson(d / "single.json");
   ASSERT_TRUE(single.contains("position_error_m"));
   ASSERT_EQ(single["trials"], trials);
+  ASSERT_EQ(single["settings"]["percepts"], "oracle");
 
   struct Case {
     std::string runner;

@@ -10,4 +10,4 @@ nao_add_test(calibrator_module_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrator
 # rules judged from the simulator's truth.
 nao_add_test(challenge_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/challenge_test.cpp LIBS nao_scenarios TIMEOUT 300)
 # The whole challenge, `calibration-challenge --seed 1`, twice (Release only: about 3 min each).
-nao_add_test(challenge_sim_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/challenge_sim_test.cpp LIBS nao_scenarios TIMEOUT 1200)
+nao_add_test(challenge_sim_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/challenge_sim_test.cpp LIBS nao_scenarios opencv_imgcodecs TIMEOUT 1200)

@@ -49,7 +49,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "eval match") return "eval match --games 1 --seconds 3 --lighting default";
   if (path == "modules") return "modules";
   if (path == "batch")
-    return "batch eval localization --trials 1 --seconds 5 --lighting default --roll-every 0 --dir " + dir + "/batch";
+    return "batch eval localization --trials 1 --seconds 5 --lighting default --roll-every 0 --percepts oracle --dir " + dir + "/batch";
   return "";
 }
 

@@ -2,7 +2,8 @@
 // simulator with both cameras, its RobotPose and BallModel judged by the simulator's truth.
 // A short scripted walk ending in a kidnap: the pose error is small and the kidnap is
 // recovered; the command's --rows: a run cut short in the middle of a row resumes to the same
-// aggregate as an uninterrupted run, and the same --seed gives the same JSON.
+// aggregate as an uninterrupted run, and the same --seed gives the same JSON. The fast percept
+// mode (--percepts oracle) runs the same trial without rendering.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -43,6 +44,27 @@ TEST(LocalizationEval, WalkThenKidnapIsScoredAgainstTheTruth) {
   // The aggregate counts it.
   EXPECT_EQ(j["kidnap"]["trials"], 1);
   EXPECT_EQ(j["kidnap"]["recovered"], 1);
+}
+
+// The same trial in the fast percept mode: the same robot program, its camera percepts from
+// OracleVision (the simulator's view with the vision's fitted errors) instead of rendered images.
+TEST(LocalizationEval, TheFastPerceptModeLocalizesThroughTheSameRobotProgram) {
+  sim::LocalizationEvalOptions o;
+  o.field = FieldDimensions::load(dataPath("config/field_dimensions.json"));
+  o.walkSeconds = 8;
+  o.kidnapEvery = 4;
+  o.oracle = true;
+  const nlohmann::json row = sim::runLocalizationTrial(o, 3);
+  ASSERT_EQ(row.at("kind"), "kidnap");
+  EXPECT_EQ(row.at("settings").at("percepts"), "oracle");
+  const nlohmann::json j = sim::aggregateLocalizationRows({row});
+  std::printf("%s\n", j.dump().c_str());
+  EXPECT_GT(row.at("valid").get<long>(), 200);
+  EXPECT_LT(j["position_error_m"]["median"].get<double>(), 0.05);
+  EXPECT_LT(j["position_error_m"]["p95"].get<double>(), 0.15);
+  EXPECT_LT(j["heading_error_deg"]["median"].get<double>(), 1.5);
+  EXPECT_EQ(j["mirrored_fraction"].get<double>(), 0.0);
+  EXPECT_TRUE(row.at("kidnap").at("recovered").get<bool>()) << row.at("kidnap").dump();
 }
 
 std::string slurp(const fs::path& p) {
@@ -90,6 +112,10 @@ TEST(LocalizationEval, RowsResumeToTheSameAggregate) {
   // Rows of other settings are refused (exit 2), the file kept.
   const auto other = test::runCommand("eval localization --trials 2 --seed 5 --seconds 6 --rows " + rows, 60);
   EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_EQ(slurp(rows), newRows);
+  const auto oracle = test::runCommand(args + (dir / "d.json").string() + " --percepts oracle --rows " + rows, 60);
+  EXPECT_EQ(oracle.code, 2) << oracle.out;
+  EXPECT_NE(oracle.out.find("percepts"), std::string::npos) << oracle.out;
   EXPECT_EQ(slurp(rows), newRows);
 }
 

@@ -33,8 +33,9 @@ if(NOT NAO_SANITIZE)
   endforeach()
 endif()
 # The robot executable and `nao-soccer run --backend nao` answer a recorded LoLA packet and image
-# sequence alike (--lockstep); skipped without ../shared's real images.
+# sequence alike (--lockstep); skipped without ../shared's real images. Alone (RUN_SERIAL): the
+# recording is a soak against lola_peer, every answer judged against the 12 ms cycle.
 add_test(NAME same_answers_test
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/same_answers_test.sh $<TARGET_FILE:nao-soccer-robot>
                  $<TARGET_FILE:nao-soccer> $<TARGET_FILE:lola_peer> ${CMAKE_SOURCE_DIR})
-set_tests_properties(same_answers_test PROPERTIES TIMEOUT 600 SKIP_RETURN_CODE 77 LABELS "nao")
+set_tests_properties(same_answers_test PROPERTIES RUN_SERIAL TRUE TIMEOUT 600 SKIP_RETURN_CODE 77 LABELS "nao")

@@ -132,6 +132,10 @@ class RenderWorker {
       : model_(mj_copyModel(nullptr, m)), data_(mj_makeData(model_)), lighting_(std::move(lighting)),
         rng_(seed ^ 0x9e3779b97f4a7c15ULL) {  // as run --backend sim
     thread_ = std::thread([this] { loop(); });
+    // The renderer is made before the LoLA loop starts: making its context loads libOSMesa and
+    // LLVM (sim/GlContext.cpp), which beside the loop held it up on the dynamic loader's lock.
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait(lock, [this] { return ready_; });
   }
   ~RenderWorker() {
     {
@@ -174,7 +178,14 @@ class RenderWorker {
     // The renders at normal priority, below the LoLA loop (SCHED_FIFO where allowed): they take what is left.
     setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 0);
     std::unique_ptr<nao::sim::CameraRenderer> renderer;
+    try {
+      renderer = std::make_unique<nao::sim::CameraRenderer>(model_);
+    } catch (const std::exception&) {
+      // Made again at the first frame, whose error the loop reports.
+    }
     std::unique_lock<std::mutex> lock(mutex_);
+    ready_ = true;
+    wake_.notify_all();
     for (;;) {
       wake_.wait(lock, [this] { return job_ || stop_; });
       if (stop_) return;
@@ -208,7 +219,7 @@ class RenderWorker {
   std::optional<Job> job_;
   std::vector<nao::CameraImage> done_;
   std::string error_;
-  bool stop_ = false;
+  bool stop_ = false, ready_ = false;
   std::thread thread_;
 };
 

@@ -381,6 +381,7 @@ void CommandLine::declare() {
     cl.number("--seconds", l.seconds, 5, 600, "s", "the scripted walk of each trial (a kidnap or a kick follows)");
     cl.count("--kidnap-every", l.kidnapEvery, 0, 1000, "trial seeds s with s mod N = N-1 end with a kidnap (0: none)");
     cl.count("--roll-every", l.rollEvery, 0, 1000, "trial seeds s with s mod N = 1 end with a rolling ball (0: none)");
+    cl.choice("--percepts", l.percepts, {"vision", "oracle"}, kPerceptsHelp);
     seedsOption(cl, l.seeds, "--trials");
     cl.outputFile("--rows", l.rows,
                   "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
@@ -544,6 +545,10 @@ void CommandLine::declare() {
     c.outputFile("--replay", k.replay,
                  "write the game's replay: one self-contained HTML page (the field from above, true and believed "
                  "poses, true and modelled balls, the referee's calls on a timeline)");
+    c.outputFolder("--images", k.images,
+                   "write pictures into DIR: the field from above (true and believed poses and balls) every 10 "
+                   "simulated s, at each point and referee call and at the end; with the vision, both robots' "
+                   "camera images at those moments");
   }
   {
     BatchOptions& b = o.batch;

@@ -116,6 +116,7 @@ struct EvalCalibrationOptions {
 struct EvalLocalizationOptions {
   CommonOptions common;
   std::string lighting = "sweep", rows;
+  std::string percepts = "vision";
   int trials = 8, kidnapEvery = 4, rollEvery = 4;
   std::vector<std::uint64_t> seeds;  // --seeds: exactly these trials
   double seconds = 20;
@@ -191,7 +192,7 @@ struct MatchOptions {
   double seconds = 0;      // 0 (not given): the whole game
   double halfSeconds = 300;
   bool randomize = false;
-  std::string opponent = "self", replay, situation;
+  std::string opponent = "self", replay, situation, images;
   std::string percepts = "vision";
 };
 
