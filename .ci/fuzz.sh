@@ -18,11 +18,15 @@ case "${1:-}" in
 esac
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNAO_FUZZ=ON \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
-cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz argv_fuzz calibration_log_fuzz fuzz_seeds -j2
+cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz argv_fuzz calibration_log_fuzz camera_matrix_fuzz fuzz_seeds -j2
 "$b"/bin/fuzz_seeds "$b"/seeds
 # The parameter loader starts from the committed parameter files.
 mkdir -p "$b"/seeds/params
 cp config/parameters/*.json "$b"/seeds/params/
+# Recorded camera matrices start from the real goal-box frames' (beside the checkout, when there).
+mkdir -p "$b"/seeds/camera_matrix
+cp ../shared/data/real-goalbox-images/*.json "$b"/seeds/camera_matrix/ 2>/dev/null || true
+printf '{"position":"Top","camera_matrix":{"camera_to_ground":{"rotation":[0,0.13,0,0.99],"translation":[0,0,0.48]},"focal_length":[608,609],"optical_center":[320,240]}}' >"$b"/seeds/camera_matrix/minimal.json
 # Command lines, their words separated by NUL bytes: a valid one of every command and a few bad.
 mkdir -p "$b"/seeds/argv
 i=0
@@ -37,6 +41,10 @@ bench sim --seconds 5 --repeats 1
 bench perception --frames 10 --camera bottom --lighting sweep
 bench calibration --miscalibration 1,2,3,-1,-2,-3
 perceive x.png --size 640x480 --head 10,5 --scale 2
+perceive x.jpg --camera bottom --camera-matrix x.json --out y.png --json -
+perceive x.png --torso 3,-2 --head 0,20
+eval real --dir d --failures f --json -
+render --camera-matrix x.json --lighting noise=0 --out t.png
 eval perception --trials 3 --max-offset 2 --images d --images-every 2
 eval calibration --trials 2 --solver ceres
 eval walk --trials 2 --seconds 10 --randomize
@@ -57,7 +65,7 @@ render --seed -1 --pose nan,1,2 --out
 eval bogus --trials 99999999999
 SEEDS
 mkdir -p "$b"/findings
-for target in lola gamecontroller params argv calibration_log; do
+for target in lola gamecontroller params argv calibration_log camera_matrix; do
   corpus="$b"/corpus/$target
   mkdir -p "$corpus"
   log="$b"/$target.log

@@ -21,6 +21,7 @@ int benchPerceptionCommand(const BenchPerceptionOptions& o);
 int benchCalibrationCommand(const BenchCalibrationOptions& o);
 int perceiveCommand(const PerceiveOptions& o);
 int evalPerceptionCommand(const EvalPerceptionOptions& o);
+int evalRealCommand(const EvalRealOptions& o);
 int evalCalibrationCommand(const EvalCalibrationOptions& o);
 int evalLocalizationCommand(const EvalLocalizationOptions& o);  // apps/LocalizationCommand.cpp
 int evalWalkCommand(const EvalMotionOptions& o);

@@ -1,14 +1,21 @@
-// nao-soccer perceive: the vision pipeline on one PNG/JPEG or raw YUV422 image. The camera
-// matrix is that of a NAO standing with the given head angles (default 0, 0), nominal
-// calibration; the intrinsics follow the image's size with the NAO's field of view.
+// nao-soccer perceive: the vision pipeline and the calibration's sample extraction on one
+// PNG/JPEG or raw YUV422 image. The camera matrix is the one recorded with the image
+// (--camera-matrix), or that of a NAO standing with the given head and torso angles (default
+// 0), nominal calibration, the intrinsics following the image's size with the NAO's field of
+// view.
 #include <cmath>
 #include <iostream>
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"
+#include "apps/SampleReport.h"
 #include "apps/SimOptions.h"
+#include "controllers/RobotProgram.h"
 #include "controllers/StandController.h"
+#include "controllers/modules/Calibrator.h"
 #include "perception/CameraModel.h"
+#include "perception/RecordedCameraMatrix.h"
+#include "perception/calibration/SampleExtraction.h"
 #include "perception/vision/Annotate.h"
 #include "perception/vision/CameraPipeline.h"
 #include "perception/vision/VisionPipeline.h"
@@ -84,26 +91,71 @@ nlohmann::json resultJson(const VisionResult& r, const CameraImage& img, const s
 
 int perceiveCommand(const PerceiveOptions& options) {
   const std::string& path = options.image;
-  const CameraId camera = options.camera == "top" ? CameraId::Top : CameraId::Bottom;
+  CameraId camera = options.camera == "top" ? CameraId::Top : CameraId::Bottom;
   const auto head = options.head.empty() ? std::vector<double>{0, 0} : options.head;
+  const auto torso = options.torso.empty() ? std::vector<double>{0, 0} : options.torso;
   const int scale = options.scale;
-  const VisionGeometry geometry = VisionGeometry::from(fieldFrom(options.common));
+  const FieldDimensions field = fieldFrom(options.common);
+  const VisionGeometry geometry = VisionGeometry::from(field);
 
+  std::optional<RecordedCameraMatrix> recorded;
+  if (!options.cameraMatrix.empty()) {
+    recorded = RecordedCameraMatrix::read(options.cameraMatrix);
+    if (options.common.has("--camera") && recorded->camera != camera)
+      throw Error("--camera", std::string(cameraName(camera)) + ", but " + options.cameraMatrix + " is of the " +
+                                  cameraName(recorded->camera) + " camera");
+    camera = recorded->camera;
+  }
   const CameraImage img = sim::readImage(path, options.width, options.height, camera);
-  JointArray joints = StandController::standPosture();
-  joints[HeadYaw] = head[0] * M_PI / 180;
-  joints[HeadPitch] = head[1] * M_PI / 180;
-  const CameraIntrinsics in = CameraIntrinsics::fromFovY(img.width, img.height);
-  const CameraMatrix cm = computeCameraMatrix(joints, Eigen::Vector2d::Zero(), camera, CameraCalibration{}, in);
+  // A NAO camera delivers 640x480 or 320x240 (either camera, as its driver is set).
+  if (!((img.width == 640 && img.height == 480) || (img.width == 320 && img.height == 240)))
+    throw Error(path, "image size: " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                          " is not a NAO camera's (640x480 or 320x240)");
+  CameraMatrix cm;
+  if (recorded) {
+    cm = recorded->forImage(img.width, img.height);
+  } else {
+    JointArray joints = StandController::standPosture();
+    joints[HeadYaw] = head[0] * M_PI / 180;
+    joints[HeadPitch] = head[1] * M_PI / 180;
+    const CameraIntrinsics in = CameraIntrinsics::fromFovY(img.width, img.height);
+    cm = computeCameraMatrix(joints, Eigen::Vector2d(torso[0], torso[1]) * M_PI / 180, camera, CameraCalibration{}, in);
+  }
   DebugSink debug(options.debug);
   CameraPipelineConfig pipelineConfig;
   pipelineConfig.debug = debug.channels();
   CameraPipeline pipeline(camera, geometry, pipelineConfig);
   pipeline.process(img, cm);
   const VisionResult r = pipeline.visionResult();
-  if (!options.out.empty()) sim::writePng(options.out, annotateVision(sim::rgbFromCameraImage(img), r, cm, scale));
+
+  // The calibration's sample extraction with this camera matrix, as the robot program runs it.
+  const auto calibrator = loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
+  calibration::ExtractionOptions eo;
+  eo.source = calibration::lineSourceFromName(calibrator.lines, "Calibrator.lines");
+  const auto* visionLines = eo.source != calibration::LineSource::Lsd ? &r.lines.lines : nullptr;
+  eo.goalBoxDepth = field.hasGoalBox ? field.goalBoxAreaLength : eo.goalBoxDepth;
+  eo.lineWidth = field.lineWidth;
+  calibration::ExtractionResult sample;
+  if (recorded) {
+    sample = calibration::extractSample(img, cm, eo, visionLines);
+  } else {
+    JointArray joints = StandController::standPosture();
+    joints[HeadYaw] = head[0] * M_PI / 180;
+    joints[HeadPitch] = head[1] * M_PI / 180;
+    sample = calibration::extractSample(img, joints, Eigen::Vector2d(torso[0], torso[1]) * M_PI / 180, cm.intrinsics, {}, eo, visionLines);
+  }
+
+  if (!options.out.empty()) {
+    cv::Mat picture = annotateVision(sim::rgbFromCameraImage(img), r, cm, scale);
+    if (recorded) drawLabelledLines(picture, recorded->lines, scale);
+    drawSample(picture, sample, scale);
+    sim::writePng(options.out, picture);
+  }
   nlohmann::json j = resultJson(r, img, path);
-  j["head_deg"] = {head[0], head[1]};
+  j["camera_matrix"] = recorded ? nlohmann::json(options.cameraMatrix) : nlohmann::json("nominal");
+  j["head_deg"] = recorded ? nlohmann::json(nullptr) : nlohmann::json{head[0], head[1]};
+  j["torso_deg"] = recorded ? nlohmann::json(nullptr) : nlohmann::json{torso[0], torso[1]};
+  j["calibration_sample"] = calibrationSampleJson(sample, eo.goalBoxDepth);
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }

@@ -11,6 +11,7 @@
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
 #include "controllers/StandController.h"
+#include "perception/RecordedCameraMatrix.h"
 #include "robot/Error.h"
 #include "sim/CameraRenderer.h"
 #include "sim/FieldView.h"
@@ -20,9 +21,22 @@
 namespace nao::cli {
 
 int renderCommand(const RenderOptions& o) {
-  const CameraId camera = o.camera == "top" ? CameraId::Top : CameraId::Bottom;
+  CameraId camera = o.camera == "top" ? CameraId::Top : CameraId::Bottom;
   const auto p = o.pose.empty() ? std::vector<double>{0, 0, 0} : o.pose;
-  const Eigen::Vector3d pose(p[0], p[1], p[2] * M_PI / 180);
+  Eigen::Vector3d pose(p[0], p[1], p[2] * M_PI / 180);
+  // The twin of a recorded real image: where its robot stood, from its goal-box labels.
+  std::optional<RecordedCameraMatrix> recorded;
+  Eigen::Vector3d twinPose = Eigen::Vector3d::Zero();
+  if (!o.cameraMatrix.empty()) {
+    recorded = RecordedCameraMatrix::read(o.cameraMatrix);
+    if (o.common.has("--camera") && recorded->camera != camera)
+      throw Error("--camera", std::string(cameraName(camera)) + ", but " + o.cameraMatrix + " is of the " +
+                                  cameraName(recorded->camera) + " camera");
+    camera = recorded->camera;
+    twinPose = recorded->robotPoseOnField(fieldFrom(o.common), o.cameraMatrix);
+    // The simulated robot stands a metre behind its camera, out of the picture.
+    pose = twinPose - Eigen::Vector3d(std::cos(twinPose.z()), std::sin(twinPose.z()), 0);
+  }
   const auto h = o.head.empty() ? std::vector<double>{0, 0} : o.head;
   const sim::Lighting lighting = lightingFrom(o.sim.lighting);
   const std::uint32_t seed = o.common.seed;
@@ -33,6 +47,7 @@ int renderCommand(const RenderOptions& o) {
   spec.field = fieldFrom(o.common);
   spec.robotModel = o.sim.model;
   spec.robots = {pose};
+  if (recorded) (camera == CameraId::Top ? spec.top : spec.bottom) = {RecordedCameraMatrix::kWidth, RecordedCameraMatrix::kHeight};
   if (!o.ball.empty()) spec.balls = {Eigen::Vector3d(o.ball[0], o.ball[1], 0.05)};
   sim::World world(spec, seed);
   world.setMiscalibration(0, offsets);
@@ -40,6 +55,11 @@ int renderCommand(const RenderOptions& o) {
   posture[HeadYaw] = h[0] * M_PI / 180;
   posture[HeadPitch] = h[1] * M_PI / 180;
   world.placeRobot(0, pose, posture);
+  if (recorded) {
+    const Eigen::Isometry3d robotOnField =
+        Eigen::Translation3d(twinPose.x(), twinPose.y(), 0) * Eigen::AngleAxisd(twinPose.z(), Eigen::Vector3d::UnitZ());
+    world.placeCamera(0, camera, robotOnField * recorded->matrix.pose, recorded->matrix.intrinsics.fovY());
+  }
 
   const sim::CameraResolution res = world.cameraResolution(camera);
   if (o.view == "field") {
@@ -71,6 +91,9 @@ int renderCommand(const RenderOptions& o) {
           {"position", {cam.translation().x(), cam.translation().y(), cam.translation().z()}},
           {"rotation", rotation}}},
         {"robot", {{"pose", {truePose.x(), truePose.y(), truePose.z() * 180 / M_PI}}}},
+        {"twin", recorded ? nlohmann::json{{"camera_matrix", o.cameraMatrix},
+                                           {"robot_pose", {twinPose.x(), twinPose.y(), twinPose.z() * 180 / M_PI}}}
+                          : nlohmann::json(nullptr)},
         {"head", {h[0], h[1]}},
         {"miscalibration_deg", calibrationDegJson(offsets)},
         {"lighting", lightingJson(lighting)},

@@ -31,6 +31,7 @@ void bind(CommandLine& cl) {
   to("bench calibration", nao::cli::benchCalibrationCommand, o.benchCalibration);
   to("perceive", nao::cli::perceiveCommand, o.perceive);
   to("eval perception", nao::cli::evalPerceptionCommand, o.evalPerception);
+  to("eval real", nao::cli::evalRealCommand, o.evalReal);
   to("eval calibration", nao::cli::evalCalibrationCommand, o.evalCalibration);
   to("eval localization", nao::cli::evalLocalizationCommand, o.evalLocalization);
   to("eval challenge", nao::cli::evalChallengeCommand, o.evalChallenge);

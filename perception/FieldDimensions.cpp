@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "robot/Error.h"
+#include "robot/InputFiles.h"
 
 namespace nao {
 
@@ -66,15 +65,7 @@ double number(const json& sec, const char* sectionName, const char* key, const s
 }  // namespace
 
 FieldDimensions FieldDimensions::load(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(path, "file not found");
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path, "not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path, "cannot read file");
-  return parse(text.str(), path);
+  return parse(readInputFile(path), path);
 }
 
 FieldDimensions FieldDimensions::parse(const std::string& jsonText, const std::string& sourceName) {

@@ -655,6 +655,17 @@ bool World::setGeomColour(int robot, const std::string& geom, const Eigen::Vecto
   return true;
 }
 
+void World::placeCamera(int robot, CameraId camera, const Eigen::Isometry3d& fieldPose, double fovY) {
+  Impl& I = *impl_;
+  const int c = cameraIndex(robot, camera);
+  I.m->cam_bodyid[c] = 0;  // the world body: cam_pos and cam_quat are field coordinates
+  I.m->cam_mode[c] = mjCAMLIGHT_FIXED;
+  for (int k = 0; k < 3; ++k) I.m->cam_pos[3 * c + k] = fieldPose.translation()[k];
+  fromEigen(Eigen::Quaterniond(fieldPose.linear() * mujocoToCamera().transpose()).normalized(), I.m->cam_quat + 4 * c);
+  I.m->cam_fovy[c] = fovY * 180 / M_PI;
+  mj_forward(I.m, I.d);
+}
+
 Eigen::Vector3d World::robotPose(int robot) const {
   const Eigen::Isometry3d t = torsoPose(robot);
   return {t.translation().x(), t.translation().y(), std::atan2(t.linear()(1, 0), t.linear()(0, 0))};

@@ -85,6 +85,10 @@ class World {
   // The colour (RGBA, 0..1) of the robot's geom named `geom` (without its prefix): a team's
   // jersey on "torso_geom". False when the robot's model has no such geom.
   bool setGeomColour(int robot, const std::string& geom, const Eigen::Vector4d& rgba);
+  // Detaches the robot's camera from its head and fixes it at `fieldPose` (B-Human camera axes,
+  // field frame) with vertical field of view fovY (rad): the simulated twin of a recorded real
+  // image (render --camera-matrix). The robot's own pictures are meaningless afterwards.
+  void placeCamera(int robot, CameraId camera, const Eigen::Isometry3d& fieldPose, double fovY);
 
   // Ground truth.
   Eigen::Vector3d robotPose(int robot) const;            // (x, y, theta), docs/conventions.md

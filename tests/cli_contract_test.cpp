@@ -147,6 +147,7 @@ std::string requiredArgs(const Command& c, const Sandbox& box, const std::string
   for (const CLI::Option* o : c.app()->get_options()) {
     if (!o->get_required() || o->get_name() == except) continue;
     if (o->get_positional()) args += " " + box.in("image.png");
+    else if (o->get_type_name() == "DIR") args += " " + o->get_name() + " " + box.in("");  // an input folder
     else args += " " + o->get_name() + " " + box.out("required.out");
   }
   return args;

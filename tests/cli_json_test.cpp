@@ -33,6 +33,7 @@ std::string smallRun(const std::string& path, const std::string& dir) {
   if (path == "bench calibration") return "bench calibration --repeats 1 --time-limit 3";
   if (path == "perceive") return "perceive " + image;
   if (path == "eval perception") return "eval perception --trials 1 --lighting default";
+  if (path == "eval real") return "eval real --dir " + std::string(NAO_SHARED_DIR) + "/data/real-goalbox-images";
   if (path == "eval calibration") return "eval calibration --trials 1 --lighting default --time-limit 3";
   if (path == "eval localization") return "eval localization --trials 1 --seconds 5 --lighting default --roll-every 0";
   if (path == "eval walk") return "eval walk --trials 1 --seconds 2";
@@ -70,7 +71,7 @@ TEST(CliJson, EveryCommandPrintsOnlyJsonOnStdout) {
     EXPECT_FALSE(fs::exists(fs::current_path() / "MUJOCO_LOG.TXT"));
     ++checked;
   }
-  EXPECT_EQ(checked, 25);
+  EXPECT_EQ(checked, 26);
 }
 
 // bench match: both percept modes in one run, each game's wall time split into parts that add

@@ -75,6 +75,9 @@ if(NAO_FUZZ)
   target_compile_definitions(argv_fuzz PRIVATE NAO_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   nao_fuzz_target(calibration_log_fuzz fuzz/calibration_log_fuzz.cpp ${CMAKE_SOURCE_DIR}/perception/calibration/CalibrationLog.cpp)
   target_link_libraries(calibration_log_fuzz PRIVATE nlohmann_json::nlohmann_json)
+  nao_fuzz_target(camera_matrix_fuzz fuzz/camera_matrix_fuzz.cpp ${CMAKE_SOURCE_DIR}/perception/RecordedCameraMatrix.cpp
+                  ${CMAKE_SOURCE_DIR}/robot/InputFiles.cpp)
+  target_link_libraries(camera_matrix_fuzz PRIVATE nlohmann_json::nlohmann_json)
   # Seed inputs (a valid packet of each kind and a few damaged ones), written at run time.
   add_executable(fuzz_seeds fuzz/fuzz_seeds.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp
                  ${CMAKE_SOURCE_DIR}/perception/calibration/CalibrationLog.cpp)

@@ -182,6 +182,16 @@ void CommandLine::declare() {
     c.numbers("--head", r.head, headElements(), "head angles within the joints' limits (default 0,0)");
     c.numbers("--ball", r.ball, {{"X", "m", -20, 20}, {"Y", "m", -20, 20}}, "a ball on the field");
     c.onField("--ball", r.ball);
+    c.inputFile("--camera-matrix", r.cameraMatrix,
+                "the simulated twin of a real image: its recorded camera matrix and goal-box labels (the JSON of "
+                "../shared/data/real-goalbox-images/README.md) place the camera where the robot stood beside the own "
+                "goal box; replaces --pose, --head and --miscalibration");
+    c.rule([&r] {
+      for (const char* f : {"--pose", "--head", "--miscalibration", "--view"})
+        if (!r.cameraMatrix.empty() && r.common.has(f))
+          return std::string("--camera-matrix: places the camera itself; ") + f + " is not used with it";
+      return std::string();
+    });
     c.outputFile("--out", r.out, "where to write the PNG")->required();
   }
   {
@@ -324,6 +334,17 @@ void CommandLine::declare() {
     c.field(kFieldFile);
     c.choice("--camera", p.camera, {"top", "bottom"}, "which camera took the image");
     c.numbers("--head", p.head, headElements(), "head angles for the camera matrix (default 0,0)");
+    c.numbers("--torso", p.torso, {{"ROLL", "deg", -30, 30}, {"PITCH", "deg", -30, 30}},
+              "the torso's roll and pitch (the IMU's angles) for the camera matrix (default 0,0)");
+    c.inputFile("--camera-matrix", p.cameraMatrix,
+                "the camera matrix the robot recorded with the image (the JSON of "
+                "../shared/data/real-goalbox-images/README.md: position, camera_matrix; crossings are drawn); "
+                "replaces --head and --torso");
+    c.rule([&p] {
+      return !p.cameraMatrix.empty() && (p.common.has("--head") || p.common.has("--torso"))
+                 ? "--camera-matrix: gives the whole camera pose; --head and --torso are not used with it"
+                 : std::string();
+    });
     c.size("--size", p.width, p.height, "size of a raw YUYV file (default: from its length)");
     c.outputFile("--out", p.out, "write the annotated image (PNG)");
     c.count("--scale", p.scale, 1, 8, "scale of the annotated image");
@@ -352,6 +373,25 @@ void CommandLine::declare() {
                                                             : std::string();
     });
     debugOptions(c, p.debug);
+
+    EvalRealOptions& er = o.evalReal;
+    Command& cr = leaf(eval, "real",
+                       "the vision and the calibration's sample extraction on real images with line labels and the "
+                       "recorded camera matrix (../shared/data/real-goalbox-images/README.md): labelled lines found, "
+                       "samples accepted and right",
+                       er.common);
+    cr.json();
+    cr.field(kFieldFile);
+    cr.text("--dir", er.dir, "DIR", "the folder of images (NAME.jpg or .png) and their labels (NAME.json)",
+            [](const std::string& d) {
+              std::error_code ec;
+              if (!std::filesystem::exists(d, ec)) return std::string("not found");
+              if (!std::filesystem::is_directory(d, ec)) return std::string("not a folder");
+              return std::string();
+            })
+        ->required();
+    cr.outputFolder("--failures", er.failures,
+                    "write an annotated picture of each image with a labelled line missed or no right sample to DIR");
 
     EvalCalibrationOptions& k = o.evalCalibration;
     Command& ck = leaf(eval, "calibration", "the robot program calibrates itself (phase 1) with random offsets, lightings and start sides: errors against the injected truth", k.common);

@@ -27,6 +27,7 @@ struct RenderOptions {
   CommonOptions common;
   SimOptions sim;
   std::string camera = "top", view = "camera", out;
+  std::string cameraMatrix;  // --camera-matrix FILE: the twin of a recorded real image
   std::vector<double> pose, head, ball;
 };
 
@@ -91,7 +92,8 @@ struct BenchCalibrationOptions {
 struct PerceiveOptions {
   CommonOptions common;
   std::string image, camera = "top", out;
-  std::vector<double> head;
+  std::string cameraMatrix;  // --camera-matrix FILE: a recorded camera matrix (RecordedCameraMatrix)
+  std::vector<double> head, torso;
   int width = 0, height = 0;  // of a raw YUYV file; 0: from its length
   int scale = 1;
   DebugOptions debug;
@@ -104,6 +106,11 @@ struct EvalPerceptionOptions {
   int trials = 300, imagesEvery = 25;
   double maxOffset = 1;
   DebugOptions debug;
+};
+
+struct EvalRealOptions {
+  CommonOptions common;
+  std::string dir, failures;
 };
 
 struct EvalCalibrationOptions {
@@ -229,6 +236,7 @@ struct Options {
   BenchCalibrationOptions benchCalibration;
   PerceiveOptions perceive;
   EvalPerceptionOptions evalPerception;
+  EvalRealOptions evalReal;
   EvalCalibrationOptions evalCalibration;
   EvalLocalizationOptions evalLocalization;
   EvalChallengeOptions evalChallenge;

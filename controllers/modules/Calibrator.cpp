@@ -59,9 +59,7 @@ Calibrator::Calibrator(const ModuleContext& context) : params_(context.load<Para
   if ((solver_.solver == calibration::SolverKind::Ceres || params_.compareSolvers) && !calibration::ceresAvailable())
     throw Error(params_.compareSolvers ? "Calibrator.compareSolvers" : "Calibrator.solver",
                 "needs Ceres, which this executable is built without (nao-soccer-robot): use gauss-newton alone");
-  if (params_.lines != "lsd" && params_.lines != "vision")
-    throw Error("Calibrator.lines", "must be lsd or vision, not '" + params_.lines + "'");
-  extraction_.source = params_.lines == "vision" ? calibration::LineSource::Vision : calibration::LineSource::Lsd;
+  extraction_.source = calibration::lineSourceFromName(params_.lines, "Calibrator.lines");
 }
 
 void Calibrator::reset() {

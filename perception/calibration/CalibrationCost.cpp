@@ -79,8 +79,15 @@ CalibrationCost::CalibrationCost(std::vector<CalibrationSample> samples, const C
 bool CalibrationCost::groundLines(const Params& x, int sample,
                                   std::array<Eigen::ParametrizedLine<double, 2>, 3>& out) const {
   const CalibrationSample& s = samples_[sample];
-  const CameraMatrix cm = computeCameraMatrix(s.joints, robotToTorso_[sample], s.camera,
-                                              CameraCalibration::fromArray(x), s.intrinsics);
+  CameraMatrix cm;
+  if (s.cameraPose) {
+    const double roll = s.camera == CameraId::Top ? x[2] : x[4], pitch = s.camera == CameraId::Top ? x[3] : x[5];
+    cm.pose = *s.cameraPose * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()) *
+              Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY());
+    cm.intrinsics = s.intrinsics;
+  } else {
+    cm = computeCameraMatrix(s.joints, robotToTorso_[sample], s.camera, CameraCalibration::fromArray(x), s.intrinsics);
+  }
   for (int l = 0; l < 3; ++l)
     if (!centreLine(cm, s.lines[l], out[l])) return false;
   return true;

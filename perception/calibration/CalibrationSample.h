@@ -12,9 +12,10 @@
 // like the robot standing turned); translations are left out because millimetre mount errors
 // move a projected point far less than 0.1 deg of rotation does.
 #include <array>
+#include <optional>
 #include <string>
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "perception/CameraModel.h"
 #include "robot/CameraImage.h"
@@ -42,6 +43,11 @@ struct CalibrationSample {
   JointArray joints{};                                  // rad, at capture time
   Eigen::Vector2d imuAngle = Eigen::Vector2d::Zero();   // torso roll, pitch at capture time
   std::array<LineMeasurement, 3> lines;                 // indexed by LineRole
+  // A recorded real image has the robot's own camera matrix of the time instead of joint
+  // angles: its camera pose in the robot frame (on the ground). With it the camera offsets
+  // rotate that pose (camera frame, as computeCameraMatrix does) and the body offsets are
+  // left out (the torso is not known): enough to check and measure a recorded sample.
+  std::optional<Eigen::Isometry3d> cameraPose;
   double headYaw() const { return joints[HeadYaw]; }
 };
 

@@ -48,7 +48,7 @@ class CalibrationStore {
   SaveOutcome save(const std::string& headId, const CalibrationRecord& record) const;
 
   double maxRmsAngleDeg = 0.15;  // the same acceptance as the calibrator's defaults
-  double maxRmsDepthM = 0.006;
+  double maxRmsDepthM = 0.012;
 
   static CalibrationRecord parse(const std::string& jsonText, const std::string& sourceName);
   static std::string serialize(const std::string& headId, const CalibrationRecord& record);

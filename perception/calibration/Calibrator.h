@@ -24,7 +24,11 @@ struct CalibratorOptions {
   double outlierFloor = 3;          // ... and beyond this (in sigmas per residual) is dropped
   // Acceptance of the solution.
   double maxRmsAngleDeg = 0.15;     // right-angle residuals
-  double maxRmsDepthM = 0.006;      // goal-box depth residuals
+  // Goal-box depth residuals. The depth scales with the camera height the leg kinematics give,
+  // which a robot's joint encoder offsets (+-1 deg) put several millimetres off: challenge seed 7
+  // (randomised robot) solved all six offsets within 0.005 deg with 7.0 mm RMS. A wrong line
+  // pairing is off by decimetres.
+  double maxRmsDepthM = 0.012;
 };
 
 struct CalibrationSolution {

@@ -110,6 +110,20 @@ std::vector<ImageSegment> paintLineSegments(const cv::Mat& gray, const std::opti
       double w0 = 0, w1 = 0;
       const Eigen::Vector2d c0 = centreAt(t0, w0), c1 = centreAt(t1, w1);
       if (w0 < o.minWidthPx || w1 < o.minWidthPx) continue;
+      // Paint between the edges: the middle brighter than both sides beyond the edges. Two
+      // neighbouring lines converging in perspective also face each other with their bright
+      // sides, with grass between them (seen on real frames: such a pair made a goal box).
+      int bright = 0;
+      constexpr int kProbes = 5;
+      for (int k = 0; k < kProbes; ++k) {
+        const double f = (k + 0.5) / kProbes;
+        const Eigen::Vector2d c = c0 + f * (c1 - c0);
+        const double w = w0 + f * (w1 - w0);
+        const Eigen::Vector2d n = ei.n;
+        const double outside = std::max(grayAt(gray, c + (w / 2 + 2.5) * n), grayAt(gray, c - (w / 2 + 2.5) * n));
+        bright += grayAt(gray, c) >= outside + 8;
+      }
+      if (bright * 5 < kProbes * 3) continue;
       pieces.push_back({c0, c1, (w0 + w1) / 2});
     }
 

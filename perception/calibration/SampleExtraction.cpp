@@ -9,13 +9,14 @@
 #include "perception/calibration/CalibrationCost.h"
 #include "perception/vision/GoalBoxDetector.h"
 #include "perception/vision/VisionPipeline.h"
+#include "robot/Error.h"
 
 namespace nao::calibration {
 namespace {
 
-std::string fmt(const char* format, double a, double b = 0) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, format, a, b);
+std::string fmt(const char* format, double a, double b = 0, double c = 0, double d = 0) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, format, a, b, c, d);
   return buf;
 }
 
@@ -58,10 +59,10 @@ bool clipBelowHorizon(const CameraMatrix& cm, ImageLine& e, double minDepression
 }
 
 // Steps 3 and 4 for one candidate: the sample, or nullopt with the reason.
+// proto: the sample's capture data (camera, intrinsics, joints and IMU or a recorded pose).
 std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const GradientImage& gradients,
-                                         const CameraMatrix& coarse, const JointArray& joints,
-                                         const Eigen::Vector2d& imuAngle, const CameraIntrinsics& intrinsics,
-                                         CameraId camera, const CameraCalibration& current, const ExtractionOptions& o,
+                                         const CameraMatrix& coarse, const CalibrationSample& proto,
+                                         const CameraCalibration& current, const ExtractionOptions& o,
                                          std::string& reason) {
   // 3: refine each line away from the junctions.
   const double s1 = sinBetween(det.shortLine, det.longLine1), s2 = sinBetween(det.shortLine, det.longLine2);
@@ -78,11 +79,7 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
   const RefinedLine refined[3] = {refineLine(gradients, det.shortLine, shortExcl, shortOpts),
                                   refineLine(gradients, det.longLine1, long1Excl, longOpts),
                                   refineLine(gradients, det.longLine2, long2Excl, longOpts)};
-  CalibrationSample sample;
-  sample.camera = camera;
-  sample.intrinsics = intrinsics;
-  sample.joints = joints;
-  sample.imuAngle = imuAngle;
+  CalibrationSample sample = proto;
   const double minDepression = o.minDepressionDeg * std::numbers::pi / 180;
   for (int l = 0; l < 3; ++l) {
     if (!refined[l].ok) {
@@ -91,7 +88,7 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
     }
     if (refined[l].measurement.rmsPx > o.maxFitRmsPx) {
       reason = std::string("implausible ") + kLineRoleNames[l] + " line: " +
-               fmt("its edge points scatter by %.2f px", refined[l].measurement.rmsPx);
+               fmt("its edge points scatter by %.2f px (at most %.2f)", refined[l].measurement.rmsPx, o.maxFitRmsPx);
       return std::nullopt;
     }
     sample.lines[l] = refined[l].measurement;
@@ -113,20 +110,28 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
     return std::nullopt;
   }
   if (std::abs(r.angle1Deg) > o.maxAngleErrorDeg || std::abs(r.angle2Deg) > o.maxAngleErrorDeg) {
-    reason = fmt("implausible: the lines meet at %.1f and %.1f deg from a right angle on the ground", r.angle1Deg,
-                 r.angle2Deg);
+    reason = fmt("implausible: the lines meet at %.1f and %.1f deg from a right angle on the ground (at most %.0f)",
+                 r.angle1Deg, r.angle2Deg, o.maxAngleErrorDeg);
     return std::nullopt;
   }
   const double ratio = (r.depthErrorM + o.goalBoxDepth) / o.goalBoxDepth;
   if (ratio < o.minDepthRatio || ratio > o.maxDepthRatio) {
-    reason = fmt("implausible: the long lines are %.2f m apart on the ground (goal box: %.2f m)",
-                 r.depthErrorM + o.goalBoxDepth, o.goalBoxDepth);
+    reason = fmt("implausible: the long lines are %.2f m apart on the ground (goal box: %.2f m, accepted %.2f-%.2f m)",
+                 r.depthErrorM + o.goalBoxDepth, o.goalBoxDepth, o.minDepthRatio * o.goalBoxDepth,
+                 o.maxDepthRatio * o.goalBoxDepth);
     return std::nullopt;
   }
   return sample;
 }
 
 }  // namespace
+
+LineSource lineSourceFromName(const std::string& name, const std::string& where) {
+  if (name == "lsd") return LineSource::Lsd;
+  if (name == "vision") return LineSource::Vision;
+  if (name == "lsd+vision") return LineSource::LsdThenVision;
+  throw Error(where, "must be lsd, vision or lsd+vision, not '" + name + "'");
+}
 
 cv::Mat greenness(const CameraImage& image) {
   cv::Mat y(image.height, image.width, CV_32F), u(image.height, image.width, CV_32F), v(image.height, image.width, CV_32F);
@@ -159,19 +164,15 @@ cv::Mat grayFromYuyv(const CameraImage& image) {
   return gray;
 }
 
-ExtractionResult extractSample(const CameraImage& image, const JointArray& joints, const Eigen::Vector2d& imuAngle,
-                               const CameraIntrinsics& intrinsicsIn, const CameraCalibration& current,
-                               const ExtractionOptions& o, const std::vector<LinesPercept::Line>* visionLines) {
+namespace {
+
+// Steps 1-4 with the coarse camera matrix (for the horizon and the plausibility checks) and the
+// capture data every sample of this image carries.
+ExtractionResult extract(const CameraImage& image, const CameraMatrix& coarse, const CalibrationSample& proto,
+                         const CameraCalibration& current, const ExtractionOptions& o,
+                         const std::vector<LinesPercept::Line>* visionLines) {
   ExtractionResult out;
-  if (!image.valid()) {
-    out.reason = "invalid image";
-    return out;
-  }
-  CameraIntrinsics intrinsics = intrinsicsIn;
-  if (intrinsics.width != image.width || intrinsics.height != image.height)
-    intrinsics = CameraIntrinsics::fromFovY(image.width, image.height, intrinsicsIn.fovY());
   const cv::Mat gray = grayFromYuyv(image);
-  const CameraMatrix coarse = computeCameraMatrix(joints, imuAngle, image.camera, current, intrinsics);
 
   GradientImage gradients = GradientImage::sobel(gray);
   gradients.greenness = greenness(image);
@@ -180,10 +181,13 @@ ExtractionResult extractSample(const CameraImage& image, const JointArray& joint
   auto tryCandidates = [&](const char* source, const std::vector<ImageSegment>& segments,
                            std::vector<GoalBoxSideDetection> candidates) {
     for (auto& c : findGoalBoxSideCandidates(segments, image.width, image.height, o.finder)) candidates.push_back(c);
-    if (candidates.empty() && out.reason.empty()) out.reason = "goal box not found: no short line joining two long lines";
+    if (candidates.empty() && out.reason.empty()) {
+      out.reason = "goal box not found: no short line joining two long lines";
+      out.segments = segments;
+    }
     for (std::size_t c = 0; c < candidates.size() && c < static_cast<std::size_t>(o.maxCandidates); ++c) {
       std::string reason;
-      auto sample = measure(candidates[c], gradients, coarse, joints, imuAngle, intrinsics, image.camera, current, o, reason);
+      auto sample = measure(candidates[c], gradients, coarse, proto, current, o, reason);
       if (sample) {
         out.segments = segments;
         out.detection = candidates[c];
@@ -202,12 +206,21 @@ ExtractionResult extractSample(const CameraImage& image, const JointArray& joint
   };
 
   // 1, 2: segments and the goal box side, image-only. The vision pipeline's lines (and its
-  // goal box finder) first, when asked for; OpenCV's LSD if they give no sample.
-  if (visionLines || o.source == LineSource::Vision) {
+  // goal box finder) first, when asked for; OpenCV's LSD if they give no sample; for
+  // LsdThenVision LSD first, then the vision's lines, then both.
+  const bool lsdFirst = o.source == LineSource::LsdThenVision;
+  std::optional<std::vector<ImageSegment>> lsd;
+  if (lsdFirst) {
+    lsd = paintLineSegments(gray, coarse.horizon(), o.segments);
+    if (tryCandidates("lsd", *lsd, {})) return out;
+  }
+  std::vector<ImageSegment> visionSegments;
+  if (visionLines || o.source != LineSource::Lsd) {
     VisionGeometry geometry;
     geometry.lineWidth = o.lineWidth;
     const std::vector<LinesPercept::Line> lines = visionLines ? *visionLines : runVision(image, coarse, geometry).lines.lines;
     const std::vector<ImageSegment> segments = segmentsFromLinesPercept(lines, coarse, o.lineWidth);
+    visionSegments = segments;
     std::vector<GoalBoxSideDetection> theirs;
     if (const auto gb = detectGoalBoxSide(lines, image.width, image.height); gb.found) {
       GoalBoxSideDetection d;
@@ -224,8 +237,51 @@ ExtractionResult extractSample(const CameraImage& image, const JointArray& joint
     }
     if (tryCandidates("vision", segments, theirs)) return out;
   }
-  if (tryCandidates("lsd", paintLineSegments(gray, coarse.horizon(), o.segments), {})) return out;
+  if (!lsd) {
+    lsd = paintLineSegments(gray, coarse.horizon(), o.segments);
+    if (tryCandidates("lsd", *lsd, {})) return out;
+  }
+  if (lsdFirst && !visionSegments.empty()) {
+    std::vector<ImageSegment> both = visionSegments;
+    both.insert(both.end(), lsd->begin(), lsd->end());
+    if (tryCandidates("vision+lsd", both, {})) return out;
+  }
   return out;
+}
+
+ExtractionResult refused(std::string reason) {
+  ExtractionResult out;
+  out.reason = std::move(reason);
+  return out;
+}
+
+}  // namespace
+
+ExtractionResult extractSample(const CameraImage& image, const JointArray& joints, const Eigen::Vector2d& imuAngle,
+                               const CameraIntrinsics& intrinsicsIn, const CameraCalibration& current,
+                               const ExtractionOptions& o, const std::vector<LinesPercept::Line>* visionLines) {
+  if (!image.valid()) return refused("invalid image");
+  CalibrationSample proto;
+  proto.camera = image.camera;
+  proto.intrinsics = intrinsicsIn;
+  if (proto.intrinsics.width != image.width || proto.intrinsics.height != image.height)
+    proto.intrinsics = CameraIntrinsics::fromFovY(image.width, image.height, intrinsicsIn.fovY());
+  proto.joints = joints;
+  proto.imuAngle = imuAngle;
+  const CameraMatrix coarse = computeCameraMatrix(joints, imuAngle, image.camera, current, proto.intrinsics);
+  return extract(image, coarse, proto, current, o, visionLines);
+}
+
+ExtractionResult extractSample(const CameraImage& image, const CameraMatrix& recorded, const ExtractionOptions& o,
+                               const std::vector<LinesPercept::Line>* visionLines) {
+  if (!image.valid()) return refused("invalid image");
+  if (recorded.intrinsics.width != image.width || recorded.intrinsics.height != image.height)
+    return refused("the camera matrix is for another image size");
+  CalibrationSample proto;
+  proto.camera = image.camera;
+  proto.intrinsics = recorded.intrinsics;
+  proto.cameraPose = recorded.pose;
+  return extract(image, recorded, proto, CameraCalibration{}, o, visionLines);
 }
 
 }  // namespace nao::calibration

@@ -20,13 +20,18 @@
 
 namespace nao::calibration {
 
-// Where the painted-line segments come from: OpenCV's LSD alone (the default), or the vision
-// pipeline first (perception/vision: its lines and its goal box finder, then this finder on its
-// lines), falling back to LSD when they give no sample. LSD is the default because it measures
-// better today: over 30 simulated trials (seed 5) the vision-first source gave 95th-percentile
-// errors up to 0.10 deg and 2 refused solutions, LSD alone 0.02 deg and none; the coarse
-// segments decide which paint edges the refinement locks on to.
-enum class LineSource { Lsd, Vision };
+// Where the painted-line segments come from: OpenCV's LSD alone (the options' default), the
+// vision pipeline first (perception/vision: its lines and its goal box finder, then this finder
+// on its lines) falling back to LSD, or LsdThenVision (the robot program's, Calibrator.lines):
+// LSD; where it gives no sample, the vision's lines; then both together. LSD goes first because
+// it measures better on the simulator's views: over 30 simulated trials (seed 5) the vision-first
+// source gave 95th-percentile errors up to 0.10 deg and 2 refused solutions, LSD alone 0.02 deg
+// and none (the coarse segments decide which paint edges the refinement locks on to). The
+// fallbacks are for real images, where each source tends to miss a different one of the three
+// lines (LSD the thin far goal line, the vision the short side line): docs/vision/real/.
+enum class LineSource { Lsd, Vision, LsdThenVision };
+// "lsd", "vision", "lsd+vision" (Calibrator.lines); throws nao::Error(where, ...) otherwise.
+LineSource lineSourceFromName(const std::string& name, const std::string& where);
 
 struct ExtractionOptions {
   LineSource source = LineSource::Lsd;
@@ -51,7 +56,7 @@ struct ExtractionResult {
   std::optional<CalibrationSample> sample;
   std::string reason;                     // when there is no sample
   std::vector<ImageSegment> segments;     // what the finder worked on
-  std::string source;                     // of the segments that gave the sample: "vision" or "lsd"
+  std::string source;                     // of the segments that gave the sample: "vision", "lsd" or "vision+lsd"
   GoalBoxSideDetection detection;
 };
 
@@ -68,6 +73,11 @@ cv::Mat greenness(const CameraImage& image);
 ExtractionResult extractSample(const CameraImage& image, const JointArray& joints, const Eigen::Vector2d& imuAngle,
                                const CameraIntrinsics& intrinsics, const CameraCalibration& current = {},
                                const ExtractionOptions& options = {},
+                               const std::vector<LinesPercept::Line>* visionLines = nullptr);
+// The same for a recorded image with the robot's own camera matrix of the time (no joint
+// angles): the sample carries that pose (CalibrationSample::cameraPose). The matrix's
+// intrinsics must be for the image's size.
+ExtractionResult extractSample(const CameraImage& image, const CameraMatrix& recorded, const ExtractionOptions& options = {},
                                const std::vector<LinesPercept::Line>* visionLines = nullptr);
 
 }  // namespace nao::calibration

@@ -1,0 +1,247 @@
+// nao-soccer eval real: the vision and the calibration's sample extraction on a folder of real,
+// labelled images (the format of ../shared/data/real-goalbox-images/README.md), each with the
+// camera matrix the robot recorded with it, scored against the labels:
+//   - each labelled line: found by the vision (a FieldLines line within 3 px of both labelled
+//     points and 2 deg of the labelled direction) and by the calibration sample;
+//   - the calibration sample: accepted, and whether its three lines are the labelled ones (short
+//     = connecting_line, the long ones = border_line and goal_box_line); an accepted sample with
+//     another line in it is a false goal-box line;
+//   - the found lines' angles on the ground with the recorded matrix (right angles, parallels).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <map>
+
+#include "apps/Cli.h"
+#include "apps/Commands.h"
+#include "apps/SampleReport.h"
+#include "apps/SimOptions.h"
+#include "controllers/RobotProgram.h"
+#include "controllers/modules/Calibrator.h"
+#include "perception/RecordedCameraMatrix.h"
+#include "perception/vision/Annotate.h"
+#include "perception/vision/CameraPipeline.h"
+#include "perception/vision/VisionPipeline.h"
+#include "robot/Error.h"
+#include "robot/OutputFiles.h"
+#include "sim/ImageIO.h"
+
+namespace nao::cli {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kMaxDistancePx = 3, kMaxAngleDeg = 2;
+// A sample line further off than this from its labelled line is another line, not an imprecise
+// measurement of the same one (the goal box's lines are 0.6 m and more apart on the ground).
+constexpr double kSameLinePx = 10, kSameLineDeg = 5;
+const char* const kLabelNames[3] = {"connecting_line", "border_line", "goal_box_line"};
+
+// Whether a found image line (a, b) is the labelled one: both labelled points within 3 px of
+// the found line, directions within 2 deg.
+bool matches(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const LabelledLine& label, double maxPx = kMaxDistancePx,
+             double maxDeg = kMaxAngleDeg) {
+  const Eigen::Vector2d d = (b - a).normalized(), l = (label.b - label.a).normalized();
+  const double angle = std::acos(std::min(1.0, std::abs(d.dot(l)))) * 180 / M_PI;
+  auto distance = [&](const Eigen::Vector2d& p) { return std::abs(d.x() * (p.y() - a.y()) - d.y() * (p.x() - a.x())); };
+  return angle <= maxDeg && distance(label.a) <= maxPx && distance(label.b) <= maxPx;
+}
+
+// Whether the sample's three lines are the labelled ones (short = connecting line) within the
+// given tolerances.
+bool sampleIs(const std::array<ImageLine, 3>& sl, const LabelledLine* const byRole[3], double maxPx, double maxDeg) {
+  auto m = [&](int k, int role) { return matches(sl[k].from, sl[k].to, *byRole[role], maxPx, maxDeg); };
+  return m(0, 0) && ((m(1, 1) && m(2, 2)) || (m(1, 2) && m(2, 1)));
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
+}
+
+nlohmann::json numberOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+int evalRealCommand(const EvalRealOptions& options) {
+  const FieldDimensions field = fieldFrom(options.common);
+  const VisionGeometry geometry = VisionGeometry::from(field);
+  std::vector<std::string> stems;
+  for (const auto& e : fs::directory_iterator(options.dir))
+    if (e.is_regular_file() && e.path().extension() == ".json") stems.push_back(e.path().stem().string());
+  std::sort(stems.begin(), stems.end());
+  std::vector<std::pair<std::string, std::string>> frames;  // image, camera matrix
+  for (const auto& s : stems)
+    for (const char* ext : {".jpg", ".jpeg", ".png"})
+      if (fs::is_regular_file(fs::path(options.dir) / (s + ext))) {
+        frames.emplace_back((fs::path(options.dir) / (s + ext)).string(), (fs::path(options.dir) / (s + ".json")).string());
+        break;
+      }
+  if (frames.empty()) throw Error("--dir", options.dir + " holds no labelled image (NAME.json beside NAME.jpg or .png)");
+  if (!options.failures.empty()) io::makeDirectories(options.failures);
+
+  // The segments' source the robot program's calibrator is configured with.
+  const auto calibrator = loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
+  calibration::ExtractionOptions eo;
+  eo.source = calibration::lineSourceFromName(calibrator.lines, "Calibrator.lines");
+  const bool visionLines = eo.source != calibration::LineSource::Lsd;
+  eo.goalBoxDepth = field.hasGoalBox ? field.goalBoxAreaLength : eo.goalBoxDepth;
+  eo.lineWidth = field.lineWidth;
+  std::map<CameraId, std::unique_ptr<CameraPipeline>> pipelines;
+
+  nlohmann::json rows = nlohmann::json::array();
+  std::map<std::string, int> labelled, byVision, bySample;
+  int accepted = 0, right = 0, imprecise = 0, wrong = 0, labelledFrames = 0;
+  std::map<std::string, int> reasons;
+  std::vector<double> sampleAngles, labelAngles, sampleParallel;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const auto& [imagePath, matrixPath] = frames[i];
+    const RecordedCameraMatrix rec = RecordedCameraMatrix::read(matrixPath);
+    const CameraImage img = sim::readImage(imagePath, 0, 0, rec.camera);
+    if (!((img.width == 640 && img.height == 480) || (img.width == 320 && img.height == 240)))
+      throw Error(imagePath, "image size: " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                 " is not a NAO camera's (640x480 or 320x240)");
+    const CameraMatrix cm = rec.forImage(img.width, img.height);
+    // Labels are for 640x480: scale them with the image.
+    std::vector<LabelledLine> labels = rec.lines;
+    for (auto& l : labels) {
+      l.a = l.a.cwiseProduct(Eigen::Vector2d(img.width / 640.0, img.height / 480.0));
+      l.b = l.b.cwiseProduct(Eigen::Vector2d(img.width / 640.0, img.height / 480.0));
+    }
+    auto& pipeline = pipelines[rec.camera];
+    if (!pipeline) pipeline = std::make_unique<CameraPipeline>(rec.camera, geometry);
+    pipeline->process(img, cm);
+    const VisionResult vision = pipeline->visionResult();
+    const calibration::ExtractionResult sample = calibration::extractSample(img, cm, eo, visionLines ? &vision.lines.lines : nullptr);
+
+    nlohmann::json row;
+    row["image"] = imagePath;
+    row["camera"] = cameraName(rec.camera);
+    row["calibration_sample"] = calibrationSampleJson(sample, eo.goalBoxDepth);
+    nlohmann::json found = nlohmann::json::object();
+    bool allFound = true;
+    const LabelledLine* byRole[3] = {nullptr, nullptr, nullptr};
+    for (int k = 0; k < 3; ++k)
+      for (const auto& l : labels)
+        if (l.name == kLabelNames[k]) byRole[k] = &labels[&l - labels.data()];
+    std::array<ImageLine, 3> sl{};
+    if (sample.sample) sl = sampleLines(*sample.sample);
+    for (const auto& l : labels) {
+      const bool v = std::any_of(vision.lines.lines.begin(), vision.lines.lines.end(),
+                                 [&](const LinesPercept::Line& f) { return matches(f.imageFrom, f.imageTo, l); });
+      bool s = false;
+      if (sample.sample)
+        for (int k = 0; k < 3; ++k) s = s || matches(sl[k].from, sl[k].to, l);
+      found[l.name] = {{"vision", v}, {"sample", s}};
+      ++labelled[l.name];
+      byVision[l.name] += v;
+      bySample[l.name] += s;
+      allFound = allFound && v;
+    }
+    row["labels_found"] = found;
+    // The sample's lines are the labelled ones: short = connecting line, long ones = the other two.
+    std::string verdict = "refused";
+    const bool complete = byRole[0] && byRole[1] && byRole[2];
+    labelledFrames += complete;
+    if (sample.sample) {
+      ++accepted;
+      if (complete) {
+        if (sampleIs(sl, byRole, kMaxDistancePx, kMaxAngleDeg)) {
+          verdict = "labelled lines";
+          ++right;
+        } else if (sampleIs(sl, byRole, kSameLinePx, kSameLineDeg)) {
+          verdict = "labelled lines, imprecise";
+          ++imprecise;
+        } else {
+          verdict = "other lines";
+          ++wrong;
+        }
+      } else {
+        verdict = "unlabelled";
+      }
+      const auto& res = row["calibration_sample"]["residuals"];
+      if (res.is_object()) {
+        sampleAngles.push_back(std::abs(res["right_angle1_deg"].get<double>()));
+        sampleAngles.push_back(std::abs(res["right_angle2_deg"].get<double>()));
+        sampleParallel.push_back(std::abs(res["parallel_deg"].get<double>()));
+      }
+    } else {
+      ++reasons[sample.reason.substr(0, sample.reason.find(':'))];
+    }
+    row["sample_verdict"] = verdict;
+    // The labelled lines' own angles on the ground with the recorded matrix: what the matrix's
+    // error alone gives (the floor under the sample's residuals).
+    if (complete) {
+      auto ground = [&](const LabelledLine& l) -> std::optional<Eigen::Vector2d> {
+        const auto a = cm.pixelToGround(l.a), b = cm.pixelToGround(l.b);
+        if (!a || !b) return std::nullopt;
+        return (*b - *a).normalized();
+      };
+      const auto s = ground(*byRole[0]), g1 = ground(*byRole[1]), g2 = ground(*byRole[2]);
+      if (s && g1 && g2) {
+        const double a1 = std::asin(std::min(1.0, std::abs(s->dot(*g1)))) * 180 / M_PI;
+        const double a2 = std::asin(std::min(1.0, std::abs(s->dot(*g2)))) * 180 / M_PI;
+        labelAngles.push_back(a1);
+        labelAngles.push_back(a2);
+        row["label_right_angles_deg"] = {a1, a2};
+      }
+    }
+    rows.push_back(row);
+
+    const bool failure = !allFound || verdict != "labelled lines";
+    if (failure && !options.failures.empty()) {
+      // Left: the vision's result; right: the sample extraction's segments and result; the
+      // labels on both.
+      cv::Mat visionSide = annotateVision(sim::rgbFromCameraImage(img), vision, cm, 1);
+      cv::Mat sampleSide = sim::rgbFromCameraImage(img);
+      drawLabelledLines(visionSide, labels, 1);
+      drawLabelledLines(sampleSide, labels, 1);
+      drawSample(sampleSide, sample, 1);
+      cv::Mat picture;
+      cv::hconcat(visionSide, sampleSide, picture);
+      sim::writePng((fs::path(options.failures) / (fs::path(imagePath).stem().string() + ".png")).string(), picture);
+    }
+    progress("eval real", i + 1, frames.size());
+  }
+
+  const int n = static_cast<int>(frames.size());
+  nlohmann::json labels = nlohmann::json::object();
+  for (const auto& [name, count] : labelled)
+    labels[name] = {{"labelled", count},
+                    {"found_by_vision", byVision[name]},
+                    {"vision_rate", static_cast<double>(byVision[name]) / count},
+                    {"found_by_sample", bySample[name]},
+                    {"sample_rate", static_cast<double>(bySample[name]) / count}};
+  nlohmann::json j;
+  j["dir"] = options.dir;
+  j["sample_lines"] = calibrator.lines;
+  j["images"] = n;
+  j["match"] = {{"max_distance_px", kMaxDistancePx},
+                {"max_angle_deg", kMaxAngleDeg},
+                {"same_line_px", kSameLinePx},
+                {"same_line_deg", kSameLineDeg}};
+  j["calibration_samples"] = {{"accepted", accepted},
+                              {"accepted_rate", static_cast<double>(accepted) / n},
+                              {"labelled_lines", right},
+                              {"labelled_lines_imprecise", imprecise},
+                              {"other_lines", wrong},
+                              {"images_with_all_three_labels", labelledFrames},
+                              {"refusals", reasons}};
+  j["labels"] = labels;
+  j["ground_angles_deg"] = {{"sample_right_angle_median", numberOrNull(median(sampleAngles))},
+                            {"sample_parallel_median", numberOrNull(median(sampleParallel))},
+                            {"labels_right_angle_median", numberOrNull(median(labelAngles))}};
+  j["frames"] = rows;
+  std::cerr << "eval real: " << accepted << " of " << n << " images gave a calibration sample (" << right
+            << " with the labelled lines, " << imprecise << " with them beyond 3 px or 2 deg, " << wrong
+            << " with other lines)\n";
+  for (const auto& [name, count] : labelled)
+    std::cerr << "  " << name << ": found by the vision in " << byVision[name] << " of " << count << ", by the sample in "
+              << bySample[name] << "\n";
+  for (const auto& [reason, count] : reasons) std::cerr << "  refused " << count << "x: " << reason << "\n";
+  writeJson(options.common.json.empty() ? "-" : options.common.json, j);
+  return 0;
+}
+
+}  // namespace nao::cli
