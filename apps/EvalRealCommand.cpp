@@ -124,7 +124,7 @@ int evalRealCommand(const EvalRealOptions& options) {
     const LabelledLine* byRole[3] = {nullptr, nullptr, nullptr};
     for (int k = 0; k < 3; ++k)
       for (const auto& l : labels)
-        if (l.name == kLabelNames[k]) byRole[k] = &labels[&l - labels.data()];
+        if (l.name == kLabelNames[k]) byRole[k] = &l;
     std::array<ImageLine, 3> sl{};
     if (sample.sample) sl = sampleLines(*sample.sample);
     for (const auto& l : labels) {
