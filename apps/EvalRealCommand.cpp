@@ -17,8 +17,6 @@
 #include "apps/Commands.h"
 #include "apps/SampleReport.h"
 #include "apps/SimOptions.h"
-#include "controllers/RobotProgram.h"
-#include "controllers/modules/Calibrator.h"
 #include "perception/RecordedCameraMatrix.h"
 #include "perception/vision/Annotate.h"
 #include "perception/vision/CameraPipeline.h"
@@ -81,13 +79,9 @@ int evalRealCommand(const EvalRealOptions& options) {
   if (frames.empty()) throw Error("--dir", options.dir + " holds no labelled image (NAME.json beside NAME.jpg or .png)");
   if (!options.failures.empty()) io::makeDirectories(options.failures);
 
-  // The segments' source the robot program's calibrator is configured with.
-  const auto calibrator = loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
-  calibration::ExtractionOptions eo;
-  eo.source = calibration::lineSourceFromName(calibrator.lines, "Calibrator.lines");
+  // The extraction as the robot program's calibrator is configured.
+  const calibration::ExtractionOptions eo = robotExtractionOptions(field);
   const bool visionLines = eo.source != calibration::LineSource::Lsd;
-  eo.goalBoxDepth = field.hasGoalBox ? field.goalBoxAreaLength : eo.goalBoxDepth;
-  eo.lineWidth = field.lineWidth;
   std::map<CameraId, std::unique_ptr<CameraPipeline>> pipelines;
 
   nlohmann::json rows = nlohmann::json::array();
@@ -99,9 +93,7 @@ int evalRealCommand(const EvalRealOptions& options) {
     const auto& [imagePath, matrixPath] = frames[i];
     const RecordedCameraMatrix rec = RecordedCameraMatrix::read(matrixPath);
     const CameraImage img = sim::readImage(imagePath, 0, 0, rec.camera);
-    if (!((img.width == 640 && img.height == 480) || (img.width == 320 && img.height == 240)))
-      throw Error(imagePath, "image size: " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                                 " is not a NAO camera's (640x480 or 320x240)");
+    requireNaoImageSize(img, imagePath);
     const CameraMatrix cm = rec.forImage(img.width, img.height);
     // Labels are for 640x480: scale them with the image.
     std::vector<LabelledLine> labels = rec.lines;
@@ -215,7 +207,9 @@ int evalRealCommand(const EvalRealOptions& options) {
                     {"sample_rate", static_cast<double>(bySample[name]) / count}};
   nlohmann::json j;
   j["dir"] = options.dir;
-  j["sample_lines"] = calibrator.lines;
+  j["sample_lines"] = eo.source == calibration::LineSource::Lsd      ? "lsd"
+                     : eo.source == calibration::LineSource::Vision ? "vision"
+                                                                    : "lsd+vision";
   j["images"] = n;
   j["match"] = {{"max_distance_px", kMaxDistancePx},
                 {"max_angle_deg", kMaxAngleDeg},

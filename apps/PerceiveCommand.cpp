@@ -10,9 +10,7 @@
 #include "apps/Commands.h"
 #include "apps/SampleReport.h"
 #include "apps/SimOptions.h"
-#include "controllers/RobotProgram.h"
 #include "controllers/StandController.h"
-#include "controllers/modules/Calibrator.h"
 #include "perception/CameraModel.h"
 #include "perception/RecordedCameraMatrix.h"
 #include "perception/calibration/SampleExtraction.h"
@@ -101,26 +99,17 @@ int perceiveCommand(const PerceiveOptions& options) {
   std::optional<RecordedCameraMatrix> recorded;
   if (!options.cameraMatrix.empty()) {
     recorded = RecordedCameraMatrix::read(options.cameraMatrix);
-    if (options.common.has("--camera") && recorded->camera != camera)
-      throw Error("--camera", std::string(cameraName(camera)) + ", but " + options.cameraMatrix + " is of the " +
-                                  cameraName(recorded->camera) + " camera");
-    camera = recorded->camera;
+    camera = recordedCamera(*recorded, options.cameraMatrix, camera, options.common.has("--camera"));
   }
   const CameraImage img = sim::readImage(path, options.width, options.height, camera);
-  // A NAO camera delivers 640x480 or 320x240 (either camera, as its driver is set).
-  if (!((img.width == 640 && img.height == 480) || (img.width == 320 && img.height == 240)))
-    throw Error(path, "image size: " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                          " is not a NAO camera's (640x480 or 320x240)");
-  CameraMatrix cm;
-  if (recorded) {
-    cm = recorded->forImage(img.width, img.height);
-  } else {
-    JointArray joints = StandController::standPosture();
-    joints[HeadYaw] = head[0] * M_PI / 180;
-    joints[HeadPitch] = head[1] * M_PI / 180;
-    const CameraIntrinsics in = CameraIntrinsics::fromFovY(img.width, img.height);
-    cm = computeCameraMatrix(joints, Eigen::Vector2d(torso[0], torso[1]) * M_PI / 180, camera, CameraCalibration{}, in);
-  }
+  requireNaoImageSize(img, path);
+  JointArray joints = StandController::standPosture();
+  joints[HeadYaw] = head[0] * M_PI / 180;
+  joints[HeadPitch] = head[1] * M_PI / 180;
+  const Eigen::Vector2d imu = Eigen::Vector2d(torso[0], torso[1]) * M_PI / 180;
+  const CameraMatrix cm =
+      recorded ? recorded->forImage(img.width, img.height)
+               : computeCameraMatrix(joints, imu, camera, CameraCalibration{}, CameraIntrinsics::fromFovY(img.width, img.height));
   DebugSink debug(options.debug);
   CameraPipelineConfig pipelineConfig;
   pipelineConfig.debug = debug.channels();
@@ -129,21 +118,10 @@ int perceiveCommand(const PerceiveOptions& options) {
   const VisionResult r = pipeline.visionResult();
 
   // The calibration's sample extraction with this camera matrix, as the robot program runs it.
-  const auto calibrator = loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
-  calibration::ExtractionOptions eo;
-  eo.source = calibration::lineSourceFromName(calibrator.lines, "Calibrator.lines");
+  const calibration::ExtractionOptions eo = robotExtractionOptions(field);
   const auto* visionLines = eo.source != calibration::LineSource::Lsd ? &r.lines.lines : nullptr;
-  eo.goalBoxDepth = field.hasGoalBox ? field.goalBoxAreaLength : eo.goalBoxDepth;
-  eo.lineWidth = field.lineWidth;
-  calibration::ExtractionResult sample;
-  if (recorded) {
-    sample = calibration::extractSample(img, cm, eo, visionLines);
-  } else {
-    JointArray joints = StandController::standPosture();
-    joints[HeadYaw] = head[0] * M_PI / 180;
-    joints[HeadPitch] = head[1] * M_PI / 180;
-    sample = calibration::extractSample(img, joints, Eigen::Vector2d(torso[0], torso[1]) * M_PI / 180, cm.intrinsics, {}, eo, visionLines);
-  }
+  const calibration::ExtractionResult sample = recorded ? calibration::extractSample(img, cm, eo, visionLines)
+                                                        : calibration::extractSample(img, joints, imu, cm.intrinsics, {}, eo, visionLines);
 
   if (!options.out.empty()) {
     cv::Mat picture = annotateVision(sim::rgbFromCameraImage(img), r, cm, scale);

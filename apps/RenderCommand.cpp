@@ -9,6 +9,7 @@
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"
+#include "apps/SampleReport.h"
 #include "apps/SimOptions.h"
 #include "controllers/StandController.h"
 #include "perception/RecordedCameraMatrix.h"
@@ -29,10 +30,7 @@ int renderCommand(const RenderOptions& o) {
   Eigen::Vector3d twinPose = Eigen::Vector3d::Zero();
   if (!o.cameraMatrix.empty()) {
     recorded = RecordedCameraMatrix::read(o.cameraMatrix);
-    if (o.common.has("--camera") && recorded->camera != camera)
-      throw Error("--camera", std::string(cameraName(camera)) + ", but " + o.cameraMatrix + " is of the " +
-                                  cameraName(recorded->camera) + " camera");
-    camera = recorded->camera;
+    camera = recordedCamera(*recorded, o.cameraMatrix, camera, o.common.has("--camera"));
     twinPose = recorded->robotPoseOnField(fieldFrom(o.common), o.cameraMatrix);
     // The simulated robot stands a metre behind its camera, out of the picture.
     pose = twinPose - Eigen::Vector3d(std::cos(twinPose.z()), std::sin(twinPose.z()), 0);

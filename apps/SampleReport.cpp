@@ -2,7 +2,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "controllers/RobotProgram.h"
+#include "controllers/modules/Calibrator.h"
 #include "perception/calibration/CalibrationCost.h"
+#include "robot/Error.h"
 
 namespace nao::cli {
 namespace {
@@ -20,6 +23,28 @@ void drawSegment(cv::Mat& rgb, const Eigen::Vector2d& a, const Eigen::Vector2d& 
 }
 
 }  // namespace
+
+CameraId recordedCamera(const RecordedCameraMatrix& recorded, const std::string& file, CameraId asked, bool askedGiven) {
+  if (askedGiven && recorded.camera != asked)
+    throw Error("--camera", std::string(cameraName(asked)) + ", but " + file + " is of the " +
+                                cameraName(recorded.camera) + " camera");
+  return recorded.camera;
+}
+
+void requireNaoImageSize(const CameraImage& image, const std::string& path) {
+  if (!((image.width == 640 && image.height == 480) || (image.width == 320 && image.height == 240)))
+    throw Error(path, "image size: " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                          " is not a NAO camera's (640x480 or 320x240)");
+}
+
+calibration::ExtractionOptions robotExtractionOptions(const FieldDimensions& field) {
+  const auto calibrator = loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
+  calibration::ExtractionOptions eo;
+  eo.source = calibration::lineSourceFromName(calibrator.lines, "Calibrator.lines");
+  if (field.hasGoalBox) eo.goalBoxDepth = field.goalBoxAreaLength;
+  eo.lineWidth = field.lineWidth;
+  return eo;
+}
 
 std::array<ImageLine, 3> sampleLines(const calibration::CalibrationSample& sample) {
   return {sample.lines[0].centre(), sample.lines[1].centre(), sample.lines[2].centre()};

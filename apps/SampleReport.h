@@ -11,6 +11,14 @@
 
 namespace nao::cli {
 
+// The camera of a recorded matrix file; a --camera given that contradicts it is refused.
+CameraId recordedCamera(const RecordedCameraMatrix& recorded, const std::string& file, CameraId asked, bool askedGiven);
+// Throws nao::Error(path, ...) unless the image is 640x480 or 320x240 (a NAO camera's sizes).
+void requireNaoImageSize(const CameraImage& image, const std::string& path);
+// The sample extraction's options as the robot program's calibrator runs it
+// (config/parameters/Calibrator.json) on `field`.
+calibration::ExtractionOptions robotExtractionOptions(const FieldDimensions& field);
+
 // The image line (two points) each of a sample's three lines stands for: the midline of its
 // two refined paint edges. Indexed by calibration::LineRole.
 std::array<ImageLine, 3> sampleLines(const calibration::CalibrationSample& sample);
