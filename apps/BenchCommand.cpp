@@ -102,8 +102,7 @@ int benchSimCommand(const BenchSimOptions& options) {
         ms["scene"].push_back(s.scene);
         ms["draw"].push_back(s.draw);
         ms["read"].push_back(s.read);
-        ms["yuyv"].push_back(s.convert);
-        ms["noise"].push_back(s.noise);
+        ms["sensor"].push_back(s.sensor);
       }
       nlohmann::json out = nlohmann::json::object();
       for (const auto& [k, x] : ms) out[k] = sim::median(x);

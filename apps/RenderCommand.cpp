@@ -2,6 +2,7 @@
 #include <mujoco/mujoco.h>
 
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 #include <random>
@@ -60,6 +61,7 @@ int renderCommand(const RenderOptions& o) {
   }
 
   const sim::CameraResolution res = world.cameraResolution(camera);
+  std::optional<sim::CameraExposure> exposure;
   if (o.view == "field") {
     std::vector<Eigen::Vector3d> balls;
     for (int b = 0; b < world.ballCount(); ++b) balls.push_back(world.ballPosition(b));
@@ -70,6 +72,7 @@ int renderCommand(const RenderOptions& o) {
     const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera), res.width,
                                                  res.height, lighting, camera, world.time(), rng);
     sim::writePng(out, img);
+    exposure = renderer.cameraExposure(world.cameraIndex(0, camera));
   }
 
   if (!o.common.json.empty()) {
@@ -95,6 +98,7 @@ int renderCommand(const RenderOptions& o) {
         {"head", {h[0], h[1]}},
         {"miscalibration_deg", calibrationDegJson(offsets)},
         {"lighting", lightingJson(lighting)},
+        {"camera_exposure", exposure ? cameraExposureJson(*exposure) : nlohmann::json(nullptr)},
         {"view", o.view},
         {"out", out},
         {"seed", seed}};

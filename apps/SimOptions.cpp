@@ -24,6 +24,7 @@ sim::Lighting lightingFrom(const std::string& spec) {
 std::vector<sim::Lighting> lightingsFrom(const std::string& spec) {
   const std::string file = dataPath("config/lighting.json");
   if (spec == "sweep") return sim::Lighting::sweep(file);
+  if (spec.rfind("sweep,", 0) == 0) return sim::Lighting::sweep(file, spec.substr(6));
   return {sim::Lighting::parse(spec, file)};
 }
 
@@ -58,7 +59,21 @@ nlohmann::json calibrationDegJson(const CameraCalibration& c) {
 nlohmann::json lightingJson(const sim::Lighting& l) {
   return {{"name", l.name},          {"intensity", l.intensity}, {"temperature", l.temperature},
           {"shadows", l.shadows},    {"elevation", l.elevation}, {"azimuth", l.azimuth},
-          {"ambient", l.ambient},    {"noise", l.noise}};
+          {"ambient", l.ambient},    {"noise", l.noise},
+          {"camera",
+           {{"enabled", l.camera.enabled},
+            {"ae", l.camera.autoExposure},
+            {"awb", l.camera.autoWhiteBalance},
+            {"vignetting", l.camera.vignetting},
+            {"defocus", l.camera.defocus},
+            {"motion", l.camera.motion}}}};
+}
+
+nlohmann::json cameraExposureJson(const sim::CameraExposure& e) {
+  return {{"exposure_ms", e.exposureMs},
+          {"gain", e.gain},
+          {"white_balance", {e.whiteBalance[0], e.whiteBalance[1], e.whiteBalance[2]}},
+          {"metered_luma", e.meteredLuma}};
 }
 
 // The calibration looks at the goal box: a field file without one is bad input for it.

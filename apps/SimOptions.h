@@ -22,5 +22,7 @@ void checkRobotModel(const std::string& model, const FieldDimensions& field);
 CameraCalibration miscalibrationFrom(const SimOptions& sim, std::uint64_t seed);
 nlohmann::json calibrationDegJson(const CameraCalibration& c);
 nlohmann::json lightingJson(const sim::Lighting& l);
+// The camera model's loops after an image (sim/CameraSensor.h): exposure, gain, white balance.
+nlohmann::json cameraExposureJson(const sim::CameraExposure& e);
 
 }  // namespace nao::cli

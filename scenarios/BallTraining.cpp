@@ -184,6 +184,7 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
                                       : options.lightings[static_cast<std::size_t>(uni(rng) * options.lightings.size()) %
                                                           options.lightings.size()];
         std::mt19937_64 noiseRng(options.seed * 1000003 + scene * 17 + static_cast<int>(camera) * 5 + k);
+        renderer.resetCameraSensors();  // each sample settled in its own light
         const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera),
                                                      res.width, res.height, lighting, camera, 0, noiseRng);
         ++samples.frames;

@@ -565,6 +565,9 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
           r.penaltyMarkImage = p.penaltyMarkImage;
         } else {
           std::mt19937_64 noiseRng(options.seed * 1000003 + trial * 17 + static_cast<int>(camera));
+          // Each image is its own moment in its light: the camera has settled there (and the
+          // result does not depend on which trials ran before, so chunks merge exactly).
+          renderer->resetCameraSensors();
           img = renderer->renderImage(world.model(), world.data(), world.cameraIndex(0, camera), res.width, res.height,
                                      lighting, camera, 0, noiseRng);
           CameraPipeline& pipeline = pipelines[static_cast<int>(camera)];

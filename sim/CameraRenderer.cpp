@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -25,8 +26,8 @@ const char* const kWhere = "renderer";
 
 }  // namespace
 
-void applyLighting(mjModel* m, mjData* d, const Lighting& lighting) {
-  const Eigen::Vector3d c = lighting.colour();
+void applyLighting(mjModel* m, mjData* d, const Lighting& lighting, const Eigen::Vector3d& gains) {
+  const Eigen::Vector3d c = lighting.colour().cwiseProduct(gains);
   const double el = lighting.elevation * std::numbers::pi / 180, az = lighting.azimuth * std::numbers::pi / 180;
   // Direction of travel of the sunlight: from azimuth/elevation towards the field.
   const Eigen::Vector3d dir(-std::cos(el) * std::cos(az), -std::cos(el) * std::sin(az), -std::sin(el));
@@ -55,24 +56,6 @@ void applyLighting(mjModel* m, mjData* d, const Lighting& lighting) {
   m->light_castshadow[sun] = lighting.shadows ? 1 : 0;
 }
 
-void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng) {
-  if (!(sigma > 0)) return;
-  // Four 16-bit uniforms from one 64-bit draw: their sum has variance 4 * 65536^2 / 12.
-  const double scaleY = sigma / (65536.0 * std::sqrt(4.0 / 12.0)), scaleUV = scaleY / 2;
-  auto sample = [&](double scale) {
-    const std::uint64_t bits = rng();
-    const double sum = static_cast<double>(bits & 0xffff) + static_cast<double>((bits >> 16) & 0xffff) +
-                       static_cast<double>((bits >> 32) & 0xffff) + static_cast<double>(bits >> 48);
-    return (sum - 2 * 65535.0) * scale;
-  };
-  std::uint8_t* p = image.yuyv.data();
-  for (std::size_t i = 0; i + 3 < image.yuyv.size(); i += 4) {
-    for (int k = 0; k < 4; ++k) {
-      p[i + k] = roundToByte(p[i + k] + sample(k % 2 == 0 ? scaleY : scaleUV));
-    }
-  }
-}
-
 struct CameraRenderer::Impl {
   std::unique_ptr<GlContext> gl;
   const mjModel* model = nullptr;
@@ -84,6 +67,8 @@ struct CameraRenderer::Impl {
   mjvCamera camera;
   std::vector<std::uint8_t> pixels;
   RenderStages stages;
+  std::map<int, CameraSensor> cameras;  // per MuJoCo camera id
+  cv::Mat rgb;                         // the last image, top-down
 
   void bind(const mjModel* m) {
     const std::array<int, 4> size{m->ngeom, m->nmesh, m->ntex, m->nmat};
@@ -142,7 +127,7 @@ CameraRenderer::CameraRenderer(const mjModel* m) : impl_(std::make_unique<Impl>(
 CameraRenderer::~CameraRenderer() = default;
 
 void CameraRenderer::drawAndRead(mjModel* m, mjData* d, int mjCameraId, int width, int height,
-                                 const Lighting& lighting) {
+                                 const Lighting& lighting, const Eigen::Vector3d& gains) {
   Impl& I = *impl_;
   if (mjCameraId < 0 || mjCameraId >= m->ncam)
     throw Error(kWhere,
@@ -159,7 +144,7 @@ void CameraRenderer::drawAndRead(mjModel* m, mjData* d, int mjCameraId, int widt
     ms = std::chrono::duration<double, std::milli>(now - t).count();
     t = now;
   };
-  applyLighting(m, d, lighting);
+  applyLighting(m, d, lighting, gains);
   I.camera.type = mjCAMERA_FIXED;
   I.camera.fixedcamid = mjCameraId;
   mjv_updateScene(m, d, &I.option, nullptr, &I.camera, mjCAT_ALL, &I.scene);
@@ -199,26 +184,47 @@ CameraImage CameraRenderer::renderImage(mjModel* m, mjData* d, int mjCameraId, i
                                         std::mt19937_64& rng) {
   if (width % 2 != 0) throw Error(kWhere, "YUYV needs an even image width, got " + std::to_string(width));
   Impl& I = *impl_;
-  drawAndRead(m, d, mjCameraId, width, height, lighting);
-  const auto t0 = std::chrono::steady_clock::now();
-  // Straight from OpenGL's bottom-up rows into the camera's YUYV bytes.
-  CameraImage image;
-  image.camera = camera;
-  image.width = width;
-  image.height = height;
-  image.timestamp = timestamp;
-  image.yuyv.resize(static_cast<std::size_t>(width) * height * 2);
-  const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
-  for (int r = 0; r < height; ++r) {
-    const std::uint8_t* in = I.pixels.data() + (height - 1 - r) * rowBytes;
-    std::uint8_t* out = image.yuyv.data() + static_cast<std::size_t>(r) * width * 2;
-    for (int c = 0; c < width; c += 2, in += 6, out += 4) yuyvPairFromRgb(in, out);
+  CameraSensor& model = I.cameras[mjCameraId];
+  // OpenGL rows run bottom-up: flip into the reused top-down buffer.
+  auto flip = [&] {
+    I.rgb.create(height, width, CV_8UC3);
+    const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
+    for (int r = 0; r < height; ++r)
+      std::copy_n(I.pixels.data() + (height - 1 - r) * rowBytes, rowBytes, I.rgb.ptr<std::uint8_t>(r));
+  };
+  if (model.needsSettling(lighting.camera)) {
+    Eigen::Vector3d gains = Eigen::Vector3d::Ones();
+    for (int look = 0; look < 3; ++look) {
+      drawAndRead(m, d, mjCameraId, width, height, lighting, gains);
+      flip();
+      if (!model.settle(I.rgb, gains, lighting.camera, camera)) break;
+      gains = model.lightGains(lighting.camera);
+    }
   }
-  const auto t1 = std::chrono::steady_clock::now();
-  addSensorNoise(image, lighting.noise, rng);
-  I.stages.convert = std::chrono::duration<double, std::milli>(t1 - t0).count();
-  I.stages.noise = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
+  // Exposure and white balance act before the sensor clips: they scale the lights.
+  drawAndRead(m, d, mjCameraId, width, height, lighting, model.lightGains(lighting.camera));
+  const auto t0 = std::chrono::steady_clock::now();
+  flip();
+  const cv::Mat& rgb = I.rgb;
+  // How the scene moves in the image from the camera's rotation (MuJoCo camera axes: x right,
+  // y up, looking along -z): turning about y moves it along u, about x along v.
+  Eigen::Vector2d imageVelocity = Eigen::Vector2d::Zero();
+  if (lighting.camera.enabled && lighting.camera.motion && d) {
+    mjtNum velocity[6];
+    mj_objectVelocity(m, d, mjOBJ_CAMERA, mjCameraId, velocity, 1);
+    const double f = height / 2.0 / std::tan(m->cam_fovy[mjCameraId] * std::numbers::pi / 360);
+    imageVelocity = Eigen::Vector2d(f * velocity[1], f * velocity[0]);
+  }
+  CameraImage image = model.process(rgb, lighting.camera, lighting.noise, imageVelocity, camera, timestamp, rng);
+  I.stages.sensor = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return image;
+}
+
+void CameraRenderer::resetCameraSensors() { impl_->cameras.clear(); }
+
+CameraExposure CameraRenderer::cameraExposure(int mjCameraId) const {
+  auto it = impl_->cameras.find(mjCameraId);
+  return it == impl_->cameras.end() ? CameraExposure{} : it->second.exposure();
 }
 
 }  // namespace nao::sim

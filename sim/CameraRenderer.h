@@ -19,18 +19,17 @@ struct mjData_;
 namespace nao::sim {
 
 // Writes `lighting` into the model's sun light (named "sun") and headlight, and the sun's
-// direction into d's light frames (so no mj_forward is needed before rendering).
-void applyLighting(mjModel_* m, mjData_* d, const Lighting& lighting);
-
-// Adds zero-mean sensor noise to a YUYV image: std. dev. sigma on Y, sigma/2 on U and V,
-// drawn from rng (approximately Gaussian: a sum of four uniforms, bounded at 3.5 sigma).
-void addSensorNoise(CameraImage& image, double sigma, std::mt19937_64& rng);
+// direction into d's light frames (so no mj_forward is needed before rendering). gains scale
+// the lights' R, G and B (the camera model's exposure and white balance).
+void applyLighting(mjModel_* m, mjData_* d, const Lighting& lighting,
+                   const Eigen::Vector3d& gains = Eigen::Vector3d::Ones());
 
 // Where a camera image's time went (ms): the scene's update from the state, the draw calls,
-// reading the pixels back (it waits for the drawing to finish), the YUYV conversion, the sensor
-// noise. renderRgb sets the first three.
+// reading the pixels back (it waits for the drawing to finish), the camera sensor's pass
+// (sim/CameraSensor.h: effects, YUYV, noise). renderRgb sets the first three. A camera's first
+// image in a light also renders to settle its loops; that time is not in these.
 struct RenderStages {
-  double scene = 0, draw = 0, read = 0, convert = 0, noise = 0;
+  double scene = 0, draw = 0, read = 0, sensor = 0;
 };
 
 class CameraRenderer {
@@ -49,10 +48,18 @@ class CameraRenderer {
   // for a bad camera id or a size beyond the model's offscreen buffer.
   cv::Mat renderRgb(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting);
 
-  // renderRgb converted to YUYV (BT.601 full range, U/V averaged over each pixel pair) with
-  // sensor noise of lighting.noise from rng: the same rng state gives the same bytes.
+  // renderRgb through the NAO camera's model (lighting.camera, sim/CameraSensor.h; its loops keep
+  // their state per mjCameraId) into YUYV (BT.601 full range, U/V averaged over each pixel pair),
+  // with the camera's rotation from d for the rolling shutter and the motion blur. The noise comes
+  // from rng: the same rng state and the same image history give the same bytes.
   CameraImage renderImage(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting,
                           CameraId camera, double timestamp, std::mt19937_64& rng);
+
+  // Forgets the cameras' exposure and white-balance state: the next image of each camera starts
+  // settled in its light (a new trial in another light, not a step in the light).
+  void resetCameraSensors();
+  // The exposure state of MuJoCo camera mjCameraId after its last image (defaults before one).
+  CameraExposure cameraExposure(int mjCameraId) const;
 
   const RenderStages& lastStages() const;
 
@@ -64,7 +71,8 @@ class CameraRenderer {
 
  private:
   // Renders into the GL buffer and reads it back into Impl::pixels (rows bottom-up).
-  void drawAndRead(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting);
+  void drawAndRead(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting,
+                   const Eigen::Vector3d& gains = Eigen::Vector3d::Ones());
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -68,19 +68,27 @@ void applyKey(Lighting& l, const std::string& key, const std::string& value, con
     l.ambient = number(0, 2, false);
   } else if (key == "noise") {
     l.noise = number(0, 50, false);
-  } else if (key == "shadows") {
+  } else if (bool* flag = key == "shadows"      ? &l.shadows
+                          : key == "camera"     ? &l.camera.enabled
+                          : key == "ae"         ? &l.camera.autoExposure
+                          : key == "awb"        ? &l.camera.autoWhiteBalance
+                          : key == "vignetting" ? &l.camera.vignetting
+                          : key == "defocus"    ? &l.camera.defocus
+                          : key == "motion"     ? &l.camera.motion
+                                                : nullptr) {
     std::string v = value;
     std::transform(v.begin(), v.end(), v.begin(), [](unsigned char c) { return std::tolower(c); });
     if (v == "on" || v == "true" || v == "yes" || v == "1") {
-      l.shadows = true;
+      *flag = true;
     } else if (v == "off" || v == "false" || v == "no" || v == "0") {
-      l.shadows = false;
+      *flag = false;
     } else {
-      throw Error(where, context + "shadows: must be on or off, got '" + value + "'");
+      throw Error(where, context + key + ": must be on or off, got '" + value + "'");
     }
   } else {
     throw Error(where, context + "unknown key '" + key +
-                           "' (keys: intensity, temperature, shadows, elevation, azimuth, ambient, noise)");
+                           "' (keys: intensity, temperature, shadows, elevation, azimuth, ambient, noise, camera, "
+                           "ae, awb, vignetting, defocus, motion)");
   }
 }
 
@@ -125,7 +133,7 @@ struct PresetFile {
     return n;
   }
 
-  Lighting preset(const std::string& name, const std::string& where) const {
+  Lighting preset(const std::string& name, const std::string& where, const Lighting& base) const {
     const json& presets = root["presets"];
     auto it = presets.find(name);
     if (it == presets.end()) {
@@ -135,13 +143,23 @@ struct PresetFile {
     }
     const std::string context = "presets." + name + ": ";
     if (!it->is_string()) throw Error(path, context + "must be a string \"key=value,...\"");
-    Lighting l;
+    Lighting l = base;
     l.name = name;
     const std::string text = trim(it->get<std::string>());
     if (!text.empty()) applyList(l, split(text, ','), path, context);
     return l;
   }
 };
+
+// The camera model's parameters: config/camera_sensor.json beside the presets file, else the
+// built-in defaults (a presets file elsewhere, e.g. a test's).
+Lighting withCamera(const std::string& presetsFile) {
+  Lighting l;
+  const std::filesystem::path file = std::filesystem::path(presetsFile).parent_path() / "camera_sensor.json";
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(file, ec)) l.camera = CameraSensorParams::load(file.string());
+  return l;
+}
 
 }  // namespace
 
@@ -170,12 +188,13 @@ Eigen::Vector3d Lighting::colour() const {
 Lighting Lighting::parse(const std::string& spec, const std::string& presetsFile) {
   const std::string text = trim(spec);
   if (text.empty()) throw Error(kFlag, "empty lighting (give a preset name or key=value,...)");
-  if (text == "sweep") throw Error(kFlag, "'sweep' names several presets; only evaluations take it");
+  if (text == "sweep" || text.rfind("sweep,", 0) == 0)
+    throw Error(kFlag, "'sweep' names several presets; only evaluations take it");
   std::vector<std::string> items = split(text, ',');
-  Lighting l;
+  Lighting l = withCamera(presetsFile);
   // An optional preset name first, then key=value overrides.
   if (!items.empty() && items.front().find('=') == std::string::npos && !items.front().empty()) {
-    l = PresetFile(presetsFile).preset(items.front(), kFlag);
+    l = PresetFile(presetsFile).preset(items.front(), kFlag, l);
     items.erase(items.begin());
     if (items.empty()) return l;
   }
@@ -184,15 +203,21 @@ Lighting Lighting::parse(const std::string& spec, const std::string& presetsFile
   return l;
 }
 
-std::vector<Lighting> Lighting::sweep(const std::string& presetsFile) {
+std::vector<Lighting> Lighting::sweep(const std::string& presetsFile, const std::string& overrides) {
   const PresetFile file(presetsFile);
   auto it = file.root.find("sweep");
   if (it == file.root.end()) throw Error(presetsFile, "sweep: missing");
   if (!it->is_array() || it->empty()) throw Error(presetsFile, "sweep: must be a non-empty list of preset names");
   std::vector<Lighting> result;
+  const Lighting base = withCamera(presetsFile);
+  const std::string extra = trim(overrides);
   for (const json& entry : *it) {
     if (!entry.is_string()) throw Error(presetsFile, "sweep: entries must be preset names");
-    result.push_back(file.preset(entry.get<std::string>(), presetsFile));
+    result.push_back(file.preset(entry.get<std::string>(), presetsFile, base));
+    if (!extra.empty()) {
+      applyList(result.back(), split(extra, ','), kFlag, "");
+      result.back().name.append(1, ',').append(extra);
+    }
   }
   return result;
 }

@@ -262,6 +262,7 @@ class BallScene : public ::testing::Test {
     world_->placeBall(0, Eigen::Vector3d(ball.x(), ball.y(), kBallR));
     const sim::Lighting lighting = sim::Lighting::parse(preset, dataPath("config/lighting.json"));
     const sim::CameraResolution res = world_->cameraResolution(camera);
+    renderer_->resetCameraSensors();  // a settled camera at each placed view, not a jump from the last
     image_ = renderer_->renderImage(world_->model(), world_->data(), world_->cameraIndex(0, camera), res.width,
                                     res.height, lighting, camera, 0, rng_);
     const SensorFrame s = world_->sensors(0);

@@ -117,7 +117,9 @@ double redOnPaint(const cv::Mat& figure, const cv::Mat& raw, cv::Point origin, i
           const int yy = y + dy, xx = x + dx;
           if (yy < 0 || xx < 0 || yy >= raw.rows || xx >= raw.cols) continue;
           const cv::Vec3b q = raw.at<cv::Vec3b>(yy, xx);
-          paint = q[0] > 140 && q[1] > 140 && q[2] > 140;
+          // White in all three channels; 110, not higher: the camera's vignetting takes a line in a
+          // corner of the top image to 0.6 of its brightness in the centre.
+          paint = q[0] > 110 && q[1] > 110 && q[2] > 110;
         }
       onPaint += paint;
     }

@@ -139,6 +139,7 @@ class SimulatedVision : public ::testing::Test {
       world_->placeBall(0, pose.ball);
       for (CameraId cam : {CameraId::Top, CameraId::Bottom}) {
         const auto res = world_->cameraResolution(cam);
+        renderer_->resetCameraSensors();  // each pose a settled camera, not a jump from the last
         const CameraImage img = renderer_->renderImage(world_->model(), world_->data(), world_->cameraIndex(0, cam),
                                                        res.width, res.height, light, cam, 0, noiseRng);
         const SensorFrame sensors = world_->sensors(0);

@@ -5,3 +5,4 @@ nao_add_test(image_decoder_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/image_decoder_
 # --gl: EGL (Mesa's software device here) against OSMesa, through the command line's processes.
 nao_add_test(gl_context_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/gl_context_test.cpp LIBS nao_sim)
 add_dependencies(gl_context_test nao-soccer)
+nao_add_test(camera_sensor_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/camera_sensor_test.cpp LIBS nao_sim)

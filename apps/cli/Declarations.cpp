@@ -53,7 +53,8 @@ const std::string kOpponentHelp =
 
 const std::string kLightingHelp =
     "lighting: a preset (default, bright, dark, warm, cold, shadows) or a key=value list "
-    "(intensity, temperature, shadows, elevation, azimuth, ambient, noise; config/lighting.json)";
+    "(intensity, temperature, shadows, elevation, azimuth, ambient, noise; the camera model's camera, ae, awb, "
+    "vignetting, defocus, motion = on|off; config/lighting.json, config/camera_sensor.json)";
 
 // A robot pose on the field; x and y are checked against the field file (with its border).
 std::vector<E> poseElements() { return {{"X", "m", -20, 20}, {"Y", "m", -20, 20}, {"THETA_DEG", "deg", -360, 360}}; }
@@ -275,7 +276,7 @@ void CommandLine::declare() {
     c.number("--seconds", s.seconds, 1, 600, "s", "simulated seconds per physics run (camera runs: at most 10)");
     c.count("--repeats", s.repeats, 1, 20, "runs per figure; the median is reported");
     c.flag("--profile", s.profile,
-           "where the time goes: each camera image's stages (scene update, draw, read-back, YUYV, noise) and the "
+           "where the time goes: each camera image's stages (scene update, draw, read-back, the camera sensor's pass) and the "
            "camera runs' wall shares (render, cognition, motion, physics and the rest)");
 
     BenchProgramOptions& g = o.benchProgram;
