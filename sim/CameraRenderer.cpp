@@ -70,6 +70,14 @@ struct CameraRenderer::Impl {
   std::map<int, CameraSensor> cameras;  // per MuJoCo camera id
   cv::Mat rgb;                         // the last image, top-down
 
+  // OpenGL rows run bottom-up: the read pixels into out with row 0 at the top.
+  void flipInto(cv::Mat& out, int width, int height) const {
+    out.create(height, width, CV_8UC3);
+    const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
+    for (int r = 0; r < height; ++r)
+      std::copy_n(pixels.data() + (height - 1 - r) * rowBytes, rowBytes, out.ptr<std::uint8_t>(r));
+  }
+
   void bind(const mjModel* m) {
     const std::array<int, 4> size{m->ngeom, m->nmesh, m->ntex, m->nmat};
     const int width = std::max(1, m->vis.global.offwidth), height = std::max(1, m->vis.global.offheight);
@@ -171,11 +179,8 @@ cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int wid
                                   const Lighting& lighting) {
   Impl& I = *impl_;
   drawAndRead(m, d, mjCameraId, width, height, lighting);
-  // OpenGL rows run bottom-up; flip so that row 0 is the top.
-  cv::Mat rgb(height, width, CV_8UC3);
-  const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
-  for (int r = 0; r < height; ++r)
-    std::copy_n(I.pixels.data() + (height - 1 - r) * rowBytes, rowBytes, rgb.ptr<std::uint8_t>(r));
+  cv::Mat rgb;
+  I.flipInto(rgb, width, height);
   return rgb;
 }
 
@@ -185,18 +190,11 @@ CameraImage CameraRenderer::renderImage(mjModel* m, mjData* d, int mjCameraId, i
   if (width % 2 != 0) throw Error(kWhere, "YUYV needs an even image width, got " + std::to_string(width));
   Impl& I = *impl_;
   CameraSensor& model = I.cameras[mjCameraId];
-  // OpenGL rows run bottom-up: flip into the reused top-down buffer.
-  auto flip = [&] {
-    I.rgb.create(height, width, CV_8UC3);
-    const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
-    for (int r = 0; r < height; ++r)
-      std::copy_n(I.pixels.data() + (height - 1 - r) * rowBytes, rowBytes, I.rgb.ptr<std::uint8_t>(r));
-  };
   if (model.needsSettling(lighting.camera)) {
     Eigen::Vector3d gains = Eigen::Vector3d::Ones();
     for (int look = 0; look < 3; ++look) {
       drawAndRead(m, d, mjCameraId, width, height, lighting, gains);
-      flip();
+      I.flipInto(I.rgb, width, height);
       if (!model.settle(I.rgb, gains, lighting.camera, camera)) break;
       gains = model.lightGains(lighting.camera);
     }
@@ -204,7 +202,7 @@ CameraImage CameraRenderer::renderImage(mjModel* m, mjData* d, int mjCameraId, i
   // Exposure and white balance act before the sensor clips: they scale the lights.
   drawAndRead(m, d, mjCameraId, width, height, lighting, model.lightGains(lighting.camera));
   const auto t0 = std::chrono::steady_clock::now();
-  flip();
+  I.flipInto(I.rgb, width, height);
   const cv::Mat& rgb = I.rgb;
   // How the scene moves in the image from the camera's rotation (MuJoCo camera axes: x right,
   // y up, looking along -z): turning about y moves it along u, about x along v.

@@ -234,12 +234,8 @@ bool CameraSensor::settle(const cv::Mat& rgb, const Eigen::Vector3d& renderedGai
     setBrightness(1, p);
     state_.whiteBalance = Eigen::Vector3d::Ones();
   }
-  Metering first;
-  for (int i = 0; i < 8; ++i) {
-    const Metering m = meter(rgb, renderedGains, lightGains(p));
-    if (i == 0) first = meter(rgb, renderedGains, renderedGains);
-    update(m, p, 1.0, 1.0);
-  }
+  const Metering first = meter(rgb, renderedGains, renderedGains);
+  for (int i = 0; i < 8; ++i) update(i == 0 ? first : meter(rgb, renderedGains, lightGains(p)), p, 1.0, 1.0);
   settled_ = true;
   pending_.clear();
   // Settled on clipped or nearly black pixels: the settled gains differ much from the rendered.
