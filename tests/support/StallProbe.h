@@ -16,18 +16,30 @@
 
 namespace lola_wire {
 
-// The machine's own stalls. A thread at SCHED_FIFO 30 (above the peer and the program) wakes
-// every 2 ms and records each wake-up more than 2 ms late. On a shared virtual machine even an
-// idle real-time thread is now and then woken 10-17 ms late (the host runs something else: on
-// this project's machines about twice a minute, with nothing else running); a late answer
-// during such a stall is the machine's, not the program's. Without the right to real-time
-// priority (not root) the probe still runs, at normal priority.
+// The machine's own stalls. On each CPU the process may use, a thread at SCHED_FIFO 30 (above
+// the peer and the program), pinned there, wakes every 2 ms and records each wake-up more than
+// 2 ms late. On a shared virtual machine even an idle real-time thread is now and then woken
+// 10-27 ms late (the host runs something else on that virtual CPU: on this project's machines
+// about twice a minute, with nothing else running); a late answer during such a stall is the
+// machine's, not the program's. One probe per CPU, because a stall of the CPU the program or
+// the peer ran on is invisible to a probe on the other one (a CI run saw an 18 ms answer with
+// the program's own turnaround at 3 ms and a single probe awake throughout). Without the right
+// to real-time priority (not root) the probes still run, at normal priority.
 class StallProbe {
  public:
-  StallProbe() : thread_([this] { loop(); }) {}
+  StallProbe() {
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    std::vector<int> cpus;
+    if (sched_getaffinity(0, sizeof allowed, &allowed) == 0)
+      for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+        if (CPU_ISSET(cpu, &allowed)) cpus.push_back(cpu);
+    if (cpus.empty()) cpus.push_back(-1);  // unknown: one unpinned probe
+    for (const int cpu : cpus) threads_.emplace_back([this, cpu] { loop(cpu); });
+  }
   ~StallProbe() {
     stop_ = true;
-    thread_.join();
+    for (auto& thread : threads_) thread.join();
   }
   // Whether the probe was held up during any part of [from, to] (monotonic seconds).
   bool stalledDuring(double from, double to) const {
@@ -51,10 +63,17 @@ class StallProbe {
   }
 
  private:
-  void loop() {
+  void loop(int cpu) {
+    if (cpu >= 0) {
+      cpu_set_t one;
+      CPU_ZERO(&one);
+      CPU_SET(cpu, &one);
+      pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+    }
     sched_param rt{};
     rt.sched_priority = 30;
-    realTime_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &rt) == 0;
+    const bool realTime = pthread_setschedparam(pthread_self(), SCHED_FIFO, &rt) == 0;
+    if (!realTime) realTime_ = false;
     constexpr double kPeriod = 0.002;
     double due = monotonic();
     while (!stop_) {
@@ -70,8 +89,8 @@ class StallProbe {
   }
   mutable std::mutex mutex_;
   std::vector<std::pair<double, double>> stalls_;
-  std::atomic<bool> stop_{false}, realTime_{false};
-  std::thread thread_;
+  std::atomic<bool> stop_{false}, realTime_{true};
+  std::vector<std::thread> threads_;
 };
 
 }  // namespace lola_wire
