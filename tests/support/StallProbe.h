@@ -17,14 +17,15 @@
 namespace lola_wire {
 
 // The machine's own stalls. On each CPU the process may use, a thread at SCHED_FIFO 30 (above
-// the peer and the program), pinned there, wakes every 2 ms and records each wake-up more than
-// 2 ms late. On a shared virtual machine even an idle real-time thread is now and then woken
-// 10-27 ms late (the host runs something else on that virtual CPU: on this project's machines
-// about twice a minute, with nothing else running); a late answer during such a stall is the
-// machine's, not the program's. One probe per CPU, because a stall of the CPU the program or
-// the peer ran on is invisible to a probe on the other one (a CI run saw an 18 ms answer with
-// the program's own turnaround at 3 ms and a single probe awake throughout). Without the right
-// to real-time priority (not root) the probes still run, at normal priority.
+// the peer and the program), pinned there, wakes every 5 ms and records each wake-up more than
+// 2 ms late (waking every 2 ms on both CPUs made the program itself late now and then). On a
+// shared virtual machine even an idle real-time thread is now and then woken 10-27 ms late (the
+// host runs something else on that virtual CPU: on this project's machines about twice a
+// minute, with nothing else running); a late answer during such a stall is the machine's, not
+// the program's. One probe per CPU, because a stall of the CPU the program or the peer ran on
+// is invisible to a probe on the other one (a CI run saw an 18 ms answer with the program's own
+// turnaround at 3 ms and a single probe awake throughout). Without the right to real-time
+// priority (not root) the probes still run, at normal priority.
 class StallProbe {
  public:
   StallProbe() {
@@ -74,13 +75,13 @@ class StallProbe {
     rt.sched_priority = 30;
     const bool realTime = pthread_setschedparam(pthread_self(), SCHED_FIFO, &rt) == 0;
     if (!realTime) realTime_ = false;
-    constexpr double kPeriod = 0.002;
+    constexpr double kPeriod = 0.005;
     double due = monotonic();
     while (!stop_) {
       due += kPeriod;
       sleepUntil(due);
       const double woke = monotonic();
-      if (woke - due > kPeriod) {
+      if (woke - due > 0.002) {
         std::lock_guard<std::mutex> lock(mutex_);
         stalls_.emplace_back(due, woke);
       }
