@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (LoLA and GameController parsers, the module parameter loader, the
-# command line, the calibration log reader) with Debian's clang in build-fuzz (or $NAO_FUZZ_BUILD_DIR)
+# command line, the calibration log reader, the recorded camera matrices, the venues) with
+# Debian's clang in build-fuzz (or $NAO_FUZZ_BUILD_DIR)
 # and runs them one after the other, one job each.
 #   bash .ci/fuzz.sh              1,000,000 executions each (the figure the README quotes)
 #   bash .ci/fuzz.sh -runs N      N executions each
@@ -18,7 +19,7 @@ case "${1:-}" in
 esac
 cmake -S . -B "$b" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNAO_FUZZ=ON \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
-cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz argv_fuzz calibration_log_fuzz camera_matrix_fuzz fuzz_seeds -j2
+cmake --build "$b" --target lola_fuzz gamecontroller_fuzz params_fuzz argv_fuzz calibration_log_fuzz camera_matrix_fuzz venues_fuzz fuzz_seeds -j2
 "$b"/bin/fuzz_seeds "$b"/seeds
 # The parameter loader starts from the committed parameter files.
 mkdir -p "$b"/seeds/params
@@ -27,6 +28,9 @@ cp config/parameters/*.json "$b"/seeds/params/
 mkdir -p "$b"/seeds/camera_matrix
 cp ../shared/data/real-goalbox-images/*.json "$b"/seeds/camera_matrix/ 2>/dev/null || true
 printf '{"position":"Top","camera_matrix":{"camera_to_ground":{"rotation":[0,0.13,0,0.99],"translation":[0,0,0.48]},"focal_length":[608,609],"optical_center":[320,240]}}' >"$b"/seeds/camera_matrix/minimal.json
+# The venues start from the committed file.
+mkdir -p "$b"/seeds/venues
+cp config/venues.json "$b"/seeds/venues/
 # Command lines, their words separated by NUL bytes: a valid one of every command and a few bad.
 mkdir -p "$b"/seeds/argv
 i=0
@@ -65,7 +69,7 @@ render --seed -1 --pose nan,1,2 --out
 eval bogus --trials 99999999999
 SEEDS
 mkdir -p "$b"/findings
-for target in lola gamecontroller params argv calibration_log camera_matrix; do
+for target in lola gamecontroller params argv calibration_log camera_matrix venues; do
   corpus="$b"/corpus/$target
   mkdir -p "$corpus"
   log="$b"/$target.log

@@ -53,6 +53,7 @@ int benchSimCommand(const BenchSimOptions& options) {
   o.field = field;
   o.robotModel = options.model;
   o.seed = options.common.seed;
+  o.venue = venueFrom(options.venue).forSeed(o.seed);
   o.lighting = lighting;
   o.cameras = false;
   o.seconds = seconds;
@@ -89,7 +90,8 @@ int benchSimCommand(const BenchSimOptions& options) {
                             {"rtf_with_cameras_runs", cameraRtf},
                             {"renders", {{"top", top.size()}, {"bottom", bottom.size()}}},
                             {"simulated_seconds_per_run", {{"physics", seconds}, {"cameras", o.seconds}}},
-                            {"lighting", lightingJson(lighting)}};
+                            {"lighting", lightingJson(lighting)},
+                            {"venue", sim::toJson(o.venue)}};
   if (!glRenderer.empty()) {
     j["gl_vendor"] = glVendor;
     j["gl_renderer"] = glRenderer;

@@ -188,6 +188,7 @@ int calibrateCommand(const CalibrateOptions& options) {
   o.lighting = lightingFrom(options.sim.lighting);
   o.miscalibration = miscalibrationFrom(options.sim, options.common.seed);
   o.seed = options.common.seed;
+  o.venue = venueFrom(options.sim.venue).forSeed(o.seed);
   const modules::Calibrator::Params calibrator = calibratorParams(options);
   o.calibrator = calibrator;
   o.side = options.start == "left" ? 1 : -1;
@@ -217,6 +218,7 @@ int calibrateCommand(const CalibrateOptions& options) {
   nlohmann::json j = runJson(r);
   j["solver"] = calibrator.solver;
   j["lighting"] = lightingJson(o.lighting);
+  j["venue"] = sim::toJson(o.venue);
   j["seed"] = o.seed;
   j["files"] = r.imagesWritten;
   if (options.save) save(options, r.headId, r.solution, r.estimate, j);
@@ -234,6 +236,8 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   o.lightings = lightingsFrom(options.lighting);
   o.maxOffsetDeg = options.maxOffset;
   o.timeLimit = options.timeLimit;
+  o.venue = venueFrom(options.venue);
+  o.randomize = options.randomize;
   o.solver = cal::parseSolver(options.solver);
   o.progress = [](int done, int total) { progress("eval calibration", done, total); };
   const sim::CalibrationEvalResult r = sim::evalCalibration(o);
@@ -242,6 +246,7 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   for (const auto& t : r.trialResults) {
     nlohmann::json tj = runJson(t.run);
     tj["lighting"] = t.lighting;
+    tj["venue"] = t.venue;
     tj["start"] = t.side > 0 ? "left" : "right";
     trials.push_back(tj);
   }
@@ -259,6 +264,8 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
                       {"finished", r.finished},
                       {"phase_s", {{"median", r.phaseSecondsMedian}, {"max", r.phaseSecondsMax}}},
                       {"seed", o.seed},
+                      {"venue", venueJson(o.venue)},
+                      {"randomize", o.randomize},
                       {"per_trial", trials}};
   std::fprintf(stderr, "eval calibration: %d trials, %d converged (both solvers), %d accepted; reprojection median %.2f px, max %.2f px; GN vs Ceres <= %.4f deg; solve <= %.3f s\n",
                r.trials, r.converged, r.accepted, r.reprojectionMedianPx, r.reprojectionMaxPx, r.solverAgreementMaxDeg,

@@ -83,6 +83,7 @@ int challengeCommand(const ChallengeCommandOptions& options) {
     o.venue = venue.name;
     o.phaseTwoBalls = venue.balls;
     run.floorFriction = venue.floorFriction;
+    run.venue = venue.look;
   }
   DebugSink debug(options.debug);
   run.debug = debug.channels();

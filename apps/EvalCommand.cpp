@@ -15,6 +15,7 @@ int evalPerceptionCommand(const EvalPerceptionOptions& options) {
   o.trials = options.trials;
   o.seed = options.common.seed;
   o.lightings = lightingsFrom(options.lighting);
+  o.venue = venueFrom(options.venue);
   o.maxOffsetDeg = options.maxOffset;
   o.imagesDir = options.images;
   o.imagesEvery = options.imagesEvery;
@@ -44,6 +45,7 @@ int evalPerceptionCommand(const EvalPerceptionOptions& options) {
   nlohmann::json names = nlohmann::json::array();
   for (const auto& l : o.lightings) names.push_back(l.name);
   j["lighting"] = names;
+  j["venue"] = venueJson(o.venue);
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }

@@ -19,6 +19,7 @@ int matchCommand(const MatchOptions& options) {
   sim::MatchOptions o;
   o.field = fieldFrom(options.common);
   o.robotModel = options.sim.model;
+  o.venue = venueFrom(options.sim.venue).forSeed(options.common.seed);
   o.lighting = lightingFrom(options.sim.lighting);
   o.seed = options.common.seed;
   o.randomize = options.randomize;

@@ -45,6 +45,8 @@ int renderCommand(const RenderOptions& o) {
   sim::SceneSpec spec;
   spec.field = fieldFrom(o.common);
   spec.robotModel = o.sim.model;
+  spec.venue = venueFrom(o.sim.venue).forSeed(seed);
+  spec.venueSeed = seed;
   spec.robots = {pose};
   if (recorded) (camera == CameraId::Top ? spec.top : spec.bottom) = {RecordedCameraMatrix::kWidth, RecordedCameraMatrix::kHeight};
   if (!o.ball.empty()) spec.balls = {Eigen::Vector3d(o.ball[0], o.ball[1], 0.05)};
@@ -98,6 +100,7 @@ int renderCommand(const RenderOptions& o) {
         {"head", {h[0], h[1]}},
         {"miscalibration_deg", calibrationDegJson(offsets)},
         {"lighting", lightingJson(lighting)},
+        {"venue", sim::toJson(spec.venue)},
         {"camera_exposure", exposure ? cameraExposureJson(*exposure) : nlohmann::json(nullptr)},
         {"view", o.view},
         {"out", out},

@@ -22,6 +22,7 @@ int runCommand(const RunOptions& options) {
   sim::SimRunOptions o;
   o.field = fieldFrom(options.common);
   o.robotModel = options.sim.model;
+  o.venue = venueFrom(options.sim.venue).forSeed(options.common.seed);
   o.seconds = options.seconds;
   const auto& p = options.pose;
   if (!p.empty()) o.pose = Eigen::Vector3d(p[0], p[1], p[2] * M_PI / 180);
@@ -92,6 +93,7 @@ int runCommand(const RunOptions& options) {
                         {"files", r.imagesWritten},
                         {"miscalibration_deg", calibrationDegJson(o.miscalibration)},
                         {"lighting", lightingJson(o.lighting)},
+                        {"venue", sim::toJson(o.venue)},
                         {"seed", o.seed}};
     if (o.goTo) {
       const Eigen::Vector2d target(o.goTo->x, o.goTo->y);

@@ -21,6 +21,19 @@ sim::Lighting lightingFrom(const std::string& spec) {
   return sim::Lighting::parse(spec, dataPath("config/lighting.json"));
 }
 
+sim::VenueChoice venueFrom(const std::string& venue) {
+  return sim::VenueChoice::load(venue, dataPath("config/venues.json"));
+}
+
+nlohmann::json venueJson(const sim::VenueChoice& venue) {
+  nlohmann::json looks = nlohmann::json::array();
+  if (venue.venue == "random")
+    for (const sim::VenueLook& l : venue.looks) looks.push_back(sim::toJson(l));
+  else
+    looks.push_back(sim::toJson(venue.forSeed(0)));
+  return {{"choice", venue.venue}, {"looks", looks}};
+}
+
 std::vector<sim::Lighting> lightingsFrom(const std::string& spec) {
   const std::string file = dataPath("config/lighting.json");
   if (spec == "sweep") return sim::Lighting::sweep(file);

@@ -6,12 +6,17 @@
 #include "perception/CameraCalibration.h"
 #include "perception/FieldDimensions.h"
 #include "sim/Lighting.h"
+#include "sim/VenueLook.h"
 
 namespace nao::cli {
 
 // The field file given with --field (or `fallback`), with every declared place checked on it.
 FieldDimensions fieldFrom(const CommonOptions& common, const std::string& fallback = "config/field_dimensions.json");
 sim::Lighting lightingFrom(const std::string& spec);
+// --venue: none, random or a name of config/venues.json (sim/VenueLook.h).
+sim::VenueChoice venueFrom(const std::string& venue);
+// What an evaluation drew its venues from: the choice and every look it could take.
+nlohmann::json venueJson(const sim::VenueChoice& venue);
 // fieldFrom for the commands that look at the goal box: a field file without one is refused.
 FieldDimensions calibrationFieldFrom(const CommonOptions& common);
 // "sweep" (every preset of the sweep) or one lighting.

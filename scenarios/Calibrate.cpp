@@ -174,6 +174,7 @@ ChallengeSetup challengeSetup(const CalibrationRunOptions& o) {
   setup.seed = o.seed;
   setup.randomize = o.randomize;
   setup.floorFriction = o.floorFriction;
+  setup.venue = o.venue;
   setup.calibrator = o.calibrator;
   setup.debug = o.debug;
   return setup;
@@ -358,9 +359,12 @@ CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {
     run.calibrator = calibrator;
     run.seed = o.seed * 7919 + static_cast<std::uint64_t>(t);
     run.timeLimit = o.timeLimit;
+    run.venue = o.venue.forSeed(o.seed + static_cast<std::uint64_t>(t));
+    run.randomize = o.randomize;
 
     CalibrationTrial trial;
     trial.lighting = run.lighting.name;
+    trial.venue = run.venue.name;
     trial.side = run.side;
     trial.run = runCalibration(run);
     const CalibrationRunResult& res = trial.run;

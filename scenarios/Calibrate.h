@@ -28,6 +28,7 @@
 #include "robot/Debug.h"
 #include "scenarios/ChallengeReferee.h"
 #include "sim/Lighting.h"
+#include "sim/VenueLook.h"
 
 namespace nao::sim {
 
@@ -47,6 +48,7 @@ struct CalibrationRunOptions {
   double timeLimit = 600;                 // s of the phase (the rules' 10 min)
   bool randomize = false;                 // a foreign robot (ChallengeSetup::randomize)
   std::optional<double> floorFriction;    // the venue's carpet
+  VenueLook venue;                        // how the venue looks (sim/VenueLook.h)
   std::optional<std::array<Eigen::Vector2d, 2>> balls;  // phase 1's balls (else near the halves' centres, from seed)
   std::function<void(double simTime)> progress;  // about once per simulated second
   DebugChannels* debug = nullptr;         // the robot program's debug channels (not owned); null: none
@@ -127,12 +129,15 @@ struct CalibrationEvalOptions {
   calibration::SolverKind solver = calibration::SolverKind::GaussNewton;
   bool compareSolvers = true;             // the robot's calibrator checks its solve with the other solver
   double timeLimit = 600;                 // s of each trial's phase
+  VenueChoice venue;                      // trial t's look: venue.forSeed(seed + t)
+  bool randomize = false;                 // foreign robots (ChallengeSetup::randomize)
   std::function<void(int done, int total)> progress;
 };
 
 struct CalibrationTrial {
   CalibrationRunResult run;
   std::string lighting;
+  std::string venue;  // the look's name
   int side = -1;
 };
 

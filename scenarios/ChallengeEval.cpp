@@ -64,6 +64,7 @@ nlohmann::json runChallengeTrial(const ChallengeEvalOptions& o, std::uint64_t se
     co.venue = venue.name;
     co.phaseTwoBalls = venue.balls;
     run.floorFriction = venue.floorFriction;
+    run.venue = venue.look;
   }
   const ChallengeResult r = runChallenge(co);
   nlohmann::json row = challengeJson(co, r);

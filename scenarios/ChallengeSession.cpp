@@ -22,6 +22,8 @@ ChallengeSession::ChallengeSession(const ChallengeSetup& setup) : setup_(setup),
   SceneSpec spec;
   spec.field = setup.field;
   spec.robotModel = setup.robotModel;
+  spec.venue = setup.venue;
+  spec.venueSeed = setup.seed;
   spec.robots = {start};
   spec.balls = {Eigen::Vector3d(-setup.field.length / 4, 0, 0.05), Eigen::Vector3d(setup.field.length / 4, 0, 0.05)};
   world_ = std::make_unique<World>(spec, setup.seed);

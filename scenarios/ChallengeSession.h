@@ -25,6 +25,7 @@
 #include "robot/Debug.h"
 #include "scenarios/ChallengeReferee.h"
 #include "sim/Lighting.h"
+#include "sim/VenueLook.h"
 
 namespace nao::sim {
 
@@ -41,6 +42,7 @@ struct ChallengeSetup {
   std::uint64_t seed = 1;
   bool randomize = false;                  // a foreign robot: masses, joint offsets (head aside), floor friction
   std::optional<double> floorFriction;     // the venue's carpet (after randomize's)
+  VenueLook venue;                         // how the venue looks (sim/VenueLook.h)
   std::optional<modules::Calibrator::Params> calibrator;  // the robot's Calibrator parameters (else its file)
   DebugChannels* debug = nullptr;          // the robot program's debug channels (not owned)
 };

@@ -214,6 +214,8 @@ MatchResult runMatch(const MatchOptions& o) {
   SceneSpec spec;
   spec.field = f;
   spec.robotModel = o.robotModel;
+  spec.venue = o.venue;
+  spec.venueSeed = o.seed;
   spec.robots = {startPose(f, 0, true), startPose(f, 1, true)};
   if (situation) checkSituation(*situation, f);
   for (int r = 0; situation && r < 2; ++r) {

@@ -18,12 +18,14 @@
 #include "perception/FieldDimensions.h"
 #include "scenarios/Situation.h"
 #include "sim/Lighting.h"
+#include "sim/VenueLook.h"
 
 namespace nao::sim {
 
 struct MatchOptions {
   FieldDimensions field;
   std::string robotModel;  // empty: models/nao_v6.xml
+  VenueLook venue;         // how the venue looks (sim/VenueLook.h)
   Lighting lighting;
   std::uint64_t seed = 1;
   bool randomize = false;     // both robots foreign (masses, joint offsets, floor friction)

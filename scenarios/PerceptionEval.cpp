@@ -3,7 +3,9 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <deque>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <random>
 
@@ -449,6 +451,9 @@ nlohmann::json PerceptionEvalResult::toJson() const {
   nlohmann::json by = nlohmann::json::object();
   for (const auto& name : lightingOrder) by[name] = byLighting.at(name).toJson();
   j["by_lighting"] = by;
+  nlohmann::json venues = nlohmann::json::object();
+  for (const auto& [name, figures] : byVenue) venues[name] = figures.toJson();
+  j["by_venue"] = venues;
   // Lighting independence: how much each figure drops from the brightest to the darkest preset
   // (percentage points; for false balls per frame and the error ratio, the rise x 100).
   if (byLighting.count("bright") && byLighting.count("dark")) {
@@ -477,14 +482,31 @@ nlohmann::json PerceptionEvalResult::toJson() const {
 }
 
 PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
-  SceneSpec spec;
-  spec.field = options.field;
-  spec.robots = {Eigen::Vector3d::Zero()};
-  spec.balls = {Eigen::Vector3d(0, 0, kBallRadius)};
-  World world(spec, options.seed);
-  // The fast percept mode renders nothing.
-  std::optional<CameraRenderer> renderer;
-  if (options.percepts != "oracle") renderer.emplace(world.model());
+  // One world per venue look the trials visit (--venue random: trial t is at look
+  // (seed + t) mod the count), each with its renderer; the fast percept mode renders nothing.
+  struct Scene {
+    std::string venue;
+    std::unique_ptr<World> world;
+    std::optional<CameraRenderer> renderer;
+  };
+  std::deque<Scene> scenes;  // references stay valid as scenes are added
+  auto sceneFor = [&](int trial) -> Scene& {
+    const VenueLook look = options.venue.forSeed(options.seed + static_cast<std::uint64_t>(trial));
+    for (Scene& s : scenes)
+      if (s.venue == look.name) return s;
+    SceneSpec spec;
+    spec.field = options.field;
+    spec.robots = {Eigen::Vector3d::Zero()};
+    spec.balls = {Eigen::Vector3d(0, 0, kBallRadius)};
+    spec.venue = look;
+    spec.venueSeed = options.seed;
+    Scene& s = scenes.emplace_back();
+    s.venue = look.name;
+    s.world = std::make_unique<World>(spec, options.seed);
+    if (options.percepts != "oracle") s.renderer.emplace(s.world->model());
+    return s;
+  };
+  const World& firstWorld = *sceneFor(0).world;
   std::vector<Lighting> lightings = options.lightings;
   if (lightings.empty()) lightings.push_back(Lighting::parse("default", dataPath("config/lighting.json")));
 
@@ -501,7 +523,7 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
   pipelineConfig.debug = options.debug;
   CameraPipeline pipelines[kNumCameras] = {CameraPipeline(CameraId::Top, options.field, pipelineConfig),
                                            CameraPipeline(CameraId::Bottom, options.field, pipelineConfig)};
-  const FieldModel& field = world.field();
+  const FieldModel& field = firstWorld.field();
   const bool oracle = options.percepts == "oracle";
   if (!oracle && options.percepts != "vision")
     throw Error("PerceptionEvalOptions.percepts", "'" + options.percepts + "' is neither vision nor oracle");
@@ -514,6 +536,9 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
   auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * uni(rng); };
 
   for (int trial = 0; trial < options.trials; ++trial) {
+    Scene& scene = sceneFor(trial);
+    World& world = *scene.world;
+    std::optional<CameraRenderer>& renderer = scene.renderer;
     // A random scene: pose anywhere on the field, head anywhere in its usual range.
     const RandomView view = randomView(field, options.maxOffsetDeg, rng);
     const Eigen::Vector3d& pose = view.pose;
@@ -578,6 +603,7 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
         PerceptionFigures fig;
         scoreFrame(world, camera, truth, r, robotPose, fig, {debug, trial, lighting.name});
         result.byLighting[lighting.name].add(fig);
+        result.byVenue[scene.venue].add(fig);
         result.all.add(fig);
         if (result.oracleFit) collectFit(sight, cm, r, fig, options.oracle, *result.oracleFit);
         if (oracle) continue;  // no pixels to draw
@@ -611,9 +637,10 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
               how += buf;
             };
             line("render --camera %s --pose %.4f,%.4f,%.3f --head %.3f,%.3f --ball %.3f,%.3f --lighting %s "
-                 "--miscalibration %.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                 "--venue %s --seed %llu --miscalibration %.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
                  cameraName(camera), pose.x(), pose.y(), pose.z() * 180 / M_PI, posture[HeadYaw] * 180 / M_PI,
-                 posture[HeadPitch] * 180 / M_PI, ball.x(), ball.y(), lighting.name.c_str(), deg[0] / kDeg,
+                 posture[HeadPitch] * 180 / M_PI, ball.x(), ball.y(), lighting.name.c_str(), scene.venue.c_str(),
+                 static_cast<unsigned long long>(options.seed), deg[0] / kDeg,
                  deg[1] / kDeg, deg[2] / kDeg, deg[3] / kDeg, deg[4] / kDeg, deg[5] / kDeg);
             for (const auto& tl : truth.lines)
               line("line %s vis %.2f img %.0f %.0f %.0f %.0f\n", tl.name.c_str(), tl.visibleLength, tl.imageFrom.x(),

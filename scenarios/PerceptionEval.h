@@ -25,6 +25,7 @@
 #include "perception/FieldDimensions.h"
 #include "robot/Debug.h"
 #include "sim/Lighting.h"
+#include "sim/VenueLook.h"
 
 namespace nao::sim {
 
@@ -33,6 +34,7 @@ struct PerceptionEvalOptions {
   std::uint64_t seed = 1;
   FieldDimensions field;
   std::vector<Lighting> lightings;  // empty: the default preset
+  VenueChoice venue;                // trial t's look: venue.forSeed(seed + t) (none: the diagram)
   double maxOffsetDeg = 1.0;        // injected camera offsets, uniform in +-this, told to the model
   double ballProbability = 0.85;    // of a scene having a ball placed in front of the robot
   std::string imagesDir;            // non-empty: annotated frames (every imagesEvery-th scene)
@@ -96,6 +98,7 @@ struct PerceptionEvalResult {
   PerceptionFigures all;
   std::map<std::string, PerceptionFigures> byLighting;
   std::vector<std::string> lightingOrder;
+  std::map<std::string, PerceptionFigures> byVenue;  // by the venue look's name
   std::vector<double> perceptionMs;  // the camera pipeline's total per frame
   std::optional<OracleFit> oracleFit;  // with fitOracle
   nlohmann::json toJson() const;

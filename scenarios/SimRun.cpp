@@ -58,6 +58,8 @@ SimRunResult runSim(const SimRunOptions& options) {
   spec.robots = {options.pose};
   if (options.ball) spec.balls = {Eigen::Vector3d(options.ball->x(), options.ball->y(), 0.05)};
   spec.robotModel = options.robotModel;
+  spec.venue = options.venue;
+  spec.venueSeed = options.seed;
   World world(spec, options.seed);
   world.setMiscalibration(0, options.miscalibration);
   world.placeRobot(0, options.pose, StandController::standPosture());

@@ -16,12 +16,14 @@
 #include "robot/Debug.h"
 #include "sim/CameraRenderer.h"
 #include "sim/Lighting.h"
+#include "sim/VenueLook.h"
 
 namespace nao::sim {
 
 struct SimRunOptions {
   FieldDimensions field;
   std::string robotModel;  // MJCF path; empty = models/nao_v6.xml
+  VenueLook venue;         // how the venue looks (sim/VenueLook.h)
   double seconds = 10;
   Eigen::Vector3d pose{-3.2, -3.0, M_PI / 2};  // the calibration position: side line, own penalty mark
   CameraCalibration miscalibration;            // injected into the simulated hardware

@@ -1,7 +1,5 @@
 #include "scenarios/Venue.h"
 
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -11,29 +9,15 @@
 namespace nao::sim {
 
 std::vector<Venue> loadVenues(const std::string& path, const FieldDimensions& field) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot be read");
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
-  if (j.is_discarded()) throw Error(path, "not valid JSON");
-  if (!j.is_object() || !j.contains("venues") || !j["venues"].is_array() || j["venues"].empty())
-    throw Error(path, "venues: must be a non-empty array");
-  for (const auto& [key, value] : j.items())
-    if (key != "venues" && key != "comment") throw Error(path, key + ": unknown key");
+  const nlohmann::json j = readVenueFile(path);
   std::vector<Venue> venues;
   for (std::size_t i = 0; i < j["venues"].size(); ++i) {
     const nlohmann::json& v = j["venues"][i];
     const std::string where = "venues[" + std::to_string(i) + "]";
-    if (!v.is_object()) throw Error(path, where + ": must be an object");
     for (const auto& [key, value] : v.items())
-      if (key != "name" && key != "floor_friction" && key != "balls") throw Error(path, where + "." + key + ": unknown key");
+      if (key != "name" && key != "floor_friction" && key != "balls" && key != "look") throw Error(path, where + "." + key + ": unknown key");
     Venue venue;
-    if (!v.contains("name") || !v["name"].is_string() || v["name"].get<std::string>().empty())
-      throw Error(path, where + ".name: must be a non-empty string");
     venue.name = v["name"];
-    for (const Venue& other : venues)
-      if (other.name == venue.name) throw Error(path, where + ".name: \"" + venue.name + "\" is there twice");
     if (!v.contains("floor_friction") || !v["floor_friction"].is_number() || !(v["floor_friction"].get<double>() >= 0.2) ||
         !(v["floor_friction"].get<double>() <= 2.0))
       throw Error(path, where + ".floor_friction: must be a number in 0.2..2");
@@ -46,6 +30,8 @@ std::vector<Venue> loadVenues(const std::string& path, const FieldDimensions& fi
       venue.balls[k] = Eigen::Vector2d(b[k][0].get<double>(), b[k][1].get<double>());
     }
     checkBalls(field, venue.balls, path + ": " + where + ".balls");
+    if (v.contains("look")) venue.look = parseVenueLook(v["look"], venue.name, path, where + ".look");
+    venue.look.name = venue.name;
     venues.push_back(venue);
   }
   return venues;

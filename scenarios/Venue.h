@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "perception/FieldDimensions.h"
+#include "sim/VenueLook.h"
 
 namespace nao::sim {
 
@@ -16,6 +17,7 @@ struct Venue {
   std::string name;
   double floorFriction = 1.0;
   std::array<Eigen::Vector2d, 2> balls{};  // own half's, then the opponent half's (field, m)
+  VenueLook look;                          // how it looks to the cameras (none given: the diagram)
 };
 
 // Every venue of `path`, each checked against `field` (its balls inside the field, one per half,

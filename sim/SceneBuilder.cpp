@@ -12,11 +12,14 @@
 #include <filesystem>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <sstream>
 #include <vector>
 
 #include "perception/FieldDimensions.h"
+#include "sim/Mjcf.h"
 #include "sim/MujocoMessages.h"
+#include "sim/VenueScene.h"
 #include "robot/Error.h"
 #include "robot/Paths.h"
 
@@ -28,6 +31,10 @@ namespace fs = std::filesystem;
 using tinyxml2::XMLDocument;
 using tinyxml2::XMLElement;
 using tinyxml2::XMLNode;
+using mjcf::add;
+using mjcf::num;
+using mjcf::vec;
+using mjcf::yawQuat;
 
 // Paint is a finite plane 0.5 mm above the carpet (clear of z-fighting). Planes, unlike thin
 // boxes, neither shadow themselves ("acne") nor speckle the carpet along their edges with
@@ -65,40 +72,12 @@ constexpr std::array<const char*, 25> kNameAttributes = {
     "site1",  "site2",   "refsite", "sidesite", "cranksite",     "slidersite", "geom",  "geom1", "geom2",
     "tendon", "tendon1", "tendon2", "actuator", "objname",       "refname",    "target"};
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
-}
-std::string vec(std::initializer_list<double> values) {
-  std::string s;
-  for (double v : values) {
-    if (!s.empty()) s += ' ';
-    s += num(v);
-  }
-  return s;
-}
 std::string oneLine(std::string text) {
   for (char& c : text)
     if (c == '\n' || c == '\r') c = ' ';
   while (!text.empty() && text.back() == ' ') text.pop_back();
   return text;
 }
-
-XMLElement* add(XMLNode* parent, const char* tag) {
-  XMLElement* e = parent->GetDocument()->NewElement(tag);
-  parent->InsertEndChild(e);
-  return e;
-}
-XMLElement* add(XMLNode* parent, const char* tag,
-                std::initializer_list<std::pair<const char*, std::string>> attributes) {
-  XMLElement* e = add(parent, tag);
-  for (const auto& [key, value] : attributes) e->SetAttribute(key, value.c_str());
-  return e;
-}
-
-// Rotation about z by angle a as an MJCF quat (independent of the compiler's angle unit).
-std::string yawQuat(double a) { return vec({std::cos(a / 2), 0, 0, std::sin(a / 2)}); }
 
 // ---------------------------------------------------------------------------------------------
 // The robot model file.
@@ -215,6 +194,12 @@ struct Scene {
   XMLElement* root;
   XMLElement *compiler, *option, *size, *visual, *statistic, *defaults, *asset, *world, *contact, *equality, *tendon,
       *actuator, *sensor, *custom;
+  // The static body of everything only the cameras see (paint, the hall's floor and contents).
+  // MuJoCo 2.2's collision detection visits every static geom against every moving body each
+  // step, whatever its contype (a venue's 300 hall geoms halved bench sim's physics_rtf, and
+  // neither a body of their own nor contact excludes helped); compileScene takes this body's
+  // geoms out of its geom list, which is what collision detection walks.
+  XMLElement* decor;
 
   Scene() {
     root = add(&doc, "mujoco", {{"model", "nao_soccer_scene"}});
@@ -226,6 +211,9 @@ struct Scene {
     defaults = add(root, "default");
     asset = add(root, "asset");
     world = add(root, "worldbody");
+    decor = add(world, "body", {{"name", "decor"}});
+    // A static body's mass is never used, but MuJoCo's compiler wants one (planes have none).
+    add(decor, "inertial", {{"pos", "0 0 0"}, {"mass", "1"}, {"diaginertia", "1 1 1"}});
     contact = add(root, "contact");
     equality = add(root, "equality");
     tendon = add(root, "tendon");
@@ -246,11 +234,11 @@ struct Scene {
   // 0.1 mm steps: pieces that overlap (circle chords, marks on lines) must not be coplanar, or
   // the shadow map z-fights between them and leaves dark ticks on the paint.
   void paint(const std::string& name, double x, double y, double halfLength, double halfWidth, double yaw,
-             int layer = 0) {
-    add(world, "geom",
+             int layer = 0, const std::string& material = "scene_line") {
+    add(decor, "geom",
         {{"name", name},
          {"type", "plane"},
-         {"material", "scene_line"},
+         {"material", material},
          {"contype", "0"},
          {"conaffinity", "0"},
          {"group", "0"},
@@ -260,7 +248,7 @@ struct Scene {
   }
 };
 
-void addAssets(Scene& s) {
+void addAssets(Scene& s, const VenueLook& look) {
   add(s.asset, "texture",
       {{"name", "scene_sky"},
        {"type", "skybox"},
@@ -269,28 +257,32 @@ void addAssets(Scene& s) {
        {"rgb2", "0.28 0.28 0.30"},
        {"width", "256"},
        {"height", "256"}});
-  // Turf: the colour is the material's (about the mean of real SPL carpets under hall light); the
-  // texture only adds a fine grain. OpenGL clamps the lit colour before multiplying by a texture,
-  // so a coloured texture could never be over-exposed; a near-white grain can.
-  add(s.asset, "texture",
-      {{"name", "scene_turf"},
-       {"type", "2d"},
-       {"builtin", "flat"},
-       {"rgb1", "0.9 0.9 0.9"},
-       {"mark", "random"},
-       {"random", "0.35"},
-       {"markrgb", "1 1 1"},
-       {"width", "512"},
-       {"height", "512"}});
-  add(s.asset, "material",
-      {{"name", "scene_turf"},
-       {"texture", "scene_turf"},
-       {"rgba", "0.24 0.61 0.22 1"},
-       {"texrepeat", "8 8"},
-       {"texuniform", "true"},
-       {"specular", "0"},
-       {"shininess", "0"},
-       {"reflectance", "0"}});
+  if (look.plain()) {
+    // Turf: the colour is the material's (about the mean of real SPL carpets under hall light); the
+    // texture only adds a fine grain. OpenGL clamps the lit colour before multiplying by a texture,
+    // so a coloured texture could never be over-exposed; a near-white grain can.
+    add(s.asset, "texture",
+        {{"name", "scene_turf"},
+         {"type", "2d"},
+         {"builtin", "flat"},
+         {"rgb1", "0.9 0.9 0.9"},
+         {"mark", "random"},
+         {"random", "0.35"},
+         {"markrgb", "1 1 1"},
+         {"width", "512"},
+         {"height", "512"}});
+    add(s.asset, "material",
+        {{"name", "scene_turf"},
+         {"texture", "scene_turf"},
+         {"rgba", "0.24 0.61 0.22 1"},
+         {"texrepeat", "8 8"},
+         {"texuniform", "true"},
+         {"specular", "0"},
+         {"shininess", "0"},
+         {"reflectance", "0"}});
+  } else {
+    venue::addAssets(s.asset, look);
+  }
   add(s.asset, "material",
       {{"name", "scene_line"},
        {"rgba", "0.95 0.95 0.95 1"},
@@ -298,9 +290,15 @@ void addAssets(Scene& s) {
        {"shininess", "0"},
        {"reflectance", "0"}});
   add(s.asset, "material",
-      {{"name", "scene_hall_floor"}, {"rgba", "0.33 0.33 0.35 1"}, {"specular", "0"}, {"reflectance", "0"}});
+      {{"name", "scene_hall_floor"},
+       {"rgba", vec({look.floor.x(), look.floor.y(), look.floor.z(), 1})},
+       {"specular", "0"},
+       {"reflectance", "0"}});
   add(s.asset, "material",
-      {{"name", "scene_hall_wall"}, {"rgba", "0.55 0.56 0.60 1"}, {"specular", "0"}, {"reflectance", "0"}});
+      {{"name", "scene_hall_wall"},
+       {"rgba", vec({look.wall.x(), look.wall.y(), look.wall.z(), 1})},
+       {"specular", "0"},
+       {"reflectance", "0"}});
   add(s.asset, "material",
       {{"name", "scene_goal"},
        {"rgba", "0.96 0.96 0.96 1"},
@@ -321,7 +319,7 @@ void addAssets(Scene& s) {
       {{"name", "scene_ball_patch"}, {"rgba", "0.05 0.05 0.05 1"}, {"specular", "0.1"}, {"reflectance", "0"}});
 }
 
-void addField(Scene& s, const FieldModel& f) {
+void addField(Scene& s, const FieldModel& f, const VenueLook& look, std::uint64_t seed) {
   const FieldDimensions& d = f.dims;
   const double hl = d.length / 2, hw = d.width / 2, w = d.lineWidth;
   const double cx = hl + d.borderStripWidth, cy = hw + d.borderStripWidth;  // carpet half sizes
@@ -340,7 +338,7 @@ void addField(Scene& s, const FieldModel& f) {
        {"group", "0"}});
   // The hall: a grey floor around the carpet and walls, so the field boundary is visible.
   const double hx = cx + kHallMargin, hy = cy + kHallMargin;
-  add(s.world, "geom",
+  add(s.decor, "geom",
       {{"name", "hall/floor"},
        {"type", "plane"},
        {"material", "scene_hall_floor"},
@@ -366,6 +364,23 @@ void addField(Scene& s, const FieldModel& f) {
          {"contype", "1"},
          {"conaffinity", "1"},
          {"group", "0"}});
+  if (!look.plain())
+    venue::addHall(s.decor, look, {cx, cy, hx, hy, -kFloorDrop, kWallHeight}, seed);
+
+  // The venue's paint: strokes of uneven pieces (sim/VenueScene.h); the plain look's: one piece
+  // per line, chord, dash.
+  std::mt19937_64 paintRng(seed * 0x9e3779b97f4a7c15ULL + 0x7061696e74ULL);
+  const venue::PaintFn venuePaint = [&](const std::string& name, double x, double y, double halfLength,
+                                        double halfWidth, double yaw, const std::string& material, int layer) {
+    s.paint(name, x, y, halfLength, halfWidth, yaw, layer, material);
+  };
+  auto paintPiece = [&](const std::string& name, const Eigen::Vector2d& centre, double halfLength, double yaw,
+                        int layer) {
+    if (look.plain())
+      s.paint(name, centre.x(), centre.y(), halfLength, w / 2, yaw, layer);
+    else
+      venue::piece(venuePaint, name, centre, halfLength, w, yaw, layer, look, paintRng);
+  };
 
   // Straight lines, each lengthened by half a line width at both ends so corners are filled.
   // Straight lines must not overlap either (same shadow-map reason): where a line ends on
@@ -390,24 +405,28 @@ void addField(Scene& s, const FieldModel& f) {
     const Eigen::Vector2d from = line.from - dir * (endsOnEarlierOrSpan(i, line.from) ? -w / 2 : w / 2);
     const Eigen::Vector2d to = line.to + dir * (endsOnEarlierOrSpan(i, line.to) ? -w / 2 : w / 2);
     const Eigen::Vector2d mid = (from + to) / 2;
-    s.paint("field/line/" + line.name, mid.x(), mid.y(), (to - from).norm() / 2, w / 2, std::atan2(dir.y(), dir.x()));
+    if (look.plain())
+      s.paint("field/line/" + line.name, mid.x(), mid.y(), (to - from).norm() / 2, w / 2, std::atan2(dir.y(), dir.x()));
+    else
+      venue::stroke(venuePaint, "field/line/" + line.name, from, to, w, look, paintRng);
   }
   // Centre circle: chords centred on the line-centre radius, long enough to close the outer edge.
   const double r = f.centerCircleRadius;
   const double halfChord = (r + w / 2) * std::tan(std::numbers::pi / kCircleSegments);
   for (int k = 0; k < kCircleSegments; ++k) {
     const double a = 2 * std::numbers::pi * k / kCircleSegments;
-    s.paint("field/circle/" + std::to_string(k), f.centerCircleCenter.x() + r * std::cos(a),
-            f.centerCircleCenter.y() + r * std::sin(a), halfChord, w / 2, a + std::numbers::pi / 2, 1 + k % 2);
+    paintPiece("field/circle/" + std::to_string(k),
+               f.centerCircleCenter + r * Eigen::Vector2d(std::cos(a), std::sin(a)), halfChord,
+               a + std::numbers::pi / 2, 1 + k % 2);
   }
   // Centre mark: a dash of penaltyCrossSize across the halfway line (along x), so with the
   // halfway line it reads as a cross like the penalty marks.
-  s.paint("field/center_mark", f.centerMark.x(), f.centerMark.y(), d.penaltyCrossSize / 2, w / 2, 0, 3);
+  paintPiece("field/center_mark", f.centerMark, d.penaltyCrossSize / 2, 0, 3);
   for (std::size_t k = 0; k < f.penaltyCrosses.size(); ++k) {
     const Eigen::Vector2d& p = f.penaltyCrosses[k];
     const std::string name = "field/penalty_cross/" + std::to_string(k);
-    s.paint(name + "/x", p.x(), p.y(), d.penaltyCrossSize / 2, w / 2, 0);
-    s.paint(name + "/y", p.x(), p.y(), d.penaltyCrossSize / 2, w / 2, std::numbers::pi / 2);
+    paintPiece(name + "/x", p, d.penaltyCrossSize / 2, 0, 0);
+    paintPiece(name + "/y", p, d.penaltyCrossSize / 2, std::numbers::pi / 2, 0);
   }
 }
 
@@ -656,7 +675,7 @@ std::string buildSceneXml(const SceneSpec& spec) {
   s.statistic->SetAttribute("extent", num(extent).c_str());
   s.statistic->SetAttribute("center", "0 0 0.3");
 
-  addAssets(s);
+  addAssets(s, spec.venue);
   // The sun; CameraRenderer overwrites colour and direction from a Lighting before each frame.
   add(s.world, "light",
       {{"name", "sun"},
@@ -668,7 +687,7 @@ std::string buildSceneXml(const SceneSpec& spec) {
        {"diffuse", "0.7 0.7 0.7"},
        {"specular", "0 0 0"},
        {"ambient", "0 0 0"}});
-  addField(s, field);
+  addField(s, field, spec.venue, spec.venueSeed);
   addGoal(s, d, -1);
   addGoal(s, d, +1);
   for (std::size_t j = 0; j < spec.balls.size(); ++j) addBall(s, static_cast<int>(j), spec.balls[j]);
@@ -691,6 +710,14 @@ mjModel_* compileScene(const SceneSpec& spec) {
   // MuJoCo names the object at fault (robot objects carry their r<i>/ prefix); its line numbers
   // count in the generated scene, not in the robot file.
   if (!m) throw Error(robotModelPath(spec), "MuJoCo (generated scene): " + oneLine(error));
+  // The decor's geoms stay in the model (the renderer and mj_ray visit every geom) but leave
+  // the body's geom list, which is what collision detection walks.
+  if (const int decor = mj_name2id(m, mjOBJ_BODY, "decor"); decor > 0) m->body_geomnum[decor] = 0;
+  if (!spec.venue.plain()) {
+    const FieldDimensions& d = spec.field;
+    venue::paintTextures(m, spec.venue,
+                         {d.length + 2 * d.borderStripWidth, d.width + 2 * d.borderStripWidth}, spec.venueSeed);
+  }
   return m;
 }
 

@@ -10,7 +10,12 @@
 //           above it, 50 mm wide: "field/line/<FieldLine name>" (lengthened by half a line width
 //           at both ends), "field/circle/<k>" (96 chords), "field/center_mark" (a 100 mm dash
 //           along x across the halfway line), "field/penalty_cross/<k>/x|y" (100 mm crosses)
-//   hall:   "hall/floor" (grey, visual only) and "hall/wall_*" 3 m beyond the carpet
+//   hall:   "hall/floor" (grey, visual only) and "hall/wall_*" 3 m beyond the carpet; a venue's
+//           look (SceneSpec::venue, sim/VenueScene.h) adds "hall/window<k>", "hall/door<k>",
+//           "hall/board<k>/...", "hall/table<k>/...", "hall/person<k>/...", "hall/floor_line<k>"
+//           and draws each line as pieces "field/line/<name>/<k>"
+//   decor:  the static body holding the paint and the hall's visual-only geoms; its geom list
+//           (body_geomnum) is emptied after compiling, so collision detection never visits them
 //   goals:  geoms "goal/own/..." (x < 0) and "goal/opp/..." (x > 0)
 //   light:  "sun" (directional; CameraRenderer sets it from a Lighting before each frame)
 // Rendering shows geom groups 0-2 only; groups 3-5 are hidden (for collision-only geoms).

@@ -1,11 +1,13 @@
 #pragma once
 // What a simulated world contains: the field (from field_dimensions.json), robots and balls.
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "perception/FieldDimensions.h"
+#include "sim/VenueLook.h"
 
 namespace nao::sim {
 
@@ -22,6 +24,8 @@ struct SceneSpec {
   CameraResolution bottom{320, 240};
   double physicsStep = 0.002;  // s; the 12 ms cycle is 6 steps
   std::string robotModel;      // MJCF path; empty = models/nao_v6.xml
+  VenueLook venue;             // how the carpet, the paint and the hall look ("none": the diagram)
+  std::uint64_t venueSeed = 1;  // where the venue's people, tables, boards stand; its textures
 };
 
 }  // namespace nao::sim

@@ -78,6 +78,9 @@ if(NAO_FUZZ)
   nao_fuzz_target(camera_matrix_fuzz fuzz/camera_matrix_fuzz.cpp ${CMAKE_SOURCE_DIR}/perception/RecordedCameraMatrix.cpp
                   ${CMAKE_SOURCE_DIR}/robot/InputFiles.cpp)
   target_link_libraries(camera_matrix_fuzz PRIVATE nlohmann_json::nlohmann_json)
+  # The venues (config/venues.json, every --venue).
+  nao_fuzz_target(venues_fuzz fuzz/venues_fuzz.cpp ${CMAKE_SOURCE_DIR}/sim/VenueLook.cpp ${CMAKE_SOURCE_DIR}/robot/Parameters.cpp)
+  target_link_libraries(venues_fuzz PRIVATE nlohmann_json::nlohmann_json)
   # Seed inputs (a valid packet of each kind and a few damaged ones), written at run time.
   add_executable(fuzz_seeds fuzz/fuzz_seeds.cpp ${CMAKE_SOURCE_DIR}/robot/nao/GameController.cpp
                  ${CMAKE_SOURCE_DIR}/perception/calibration/CalibrationLog.cpp)

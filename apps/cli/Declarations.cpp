@@ -44,8 +44,8 @@ std::string venueProblem(const std::string& value) {
   return "unknown venue '" + value + "' (none, random" + (names.empty() ? "" : ", " + names) + ")";
 }
 const std::string kVenueHelp =
-    "none (phase 2's balls from the seed), random (the trial seed's turn through config/venues.json) or a venue's name "
-    "there: its taped balls and carpet friction";
+    "none (phase 2's balls from the seed, the plain diagram), random (the trial seed's turn through config/venues.json) "
+    "or a venue's name there: its taped balls, carpet friction and look";
 
 const std::string kOpponentHelp =
     "the away robot: self (our robot program, as home), baseline (ours playing the scripted baseline: to the ball, "
@@ -68,8 +68,13 @@ std::vector<E> offsetElements() {
   return e;
 }
 
-void simOptions(Command& c, SimOptions& s, bool miscalibration = true) {
+const std::string kVenueLookHelp =
+    "how the venue looks: none (the plain diagram), random (the seed's turn through config/venues.json) or a venue's "
+    "name there (its carpet, paint, hall, boards, tables and people)";
+
+void simOptions(Command& c, SimOptions& s, bool miscalibration = true, bool venue = true) {
   c.text("--lighting", s.lighting, "SPEC", kLightingHelp + " (default " + s.lighting + ")");
+  if (venue) c.text("--venue", s.venue, "NAME", kVenueLookHelp + " (default " + s.venue + ")", venueProblem);
   if (miscalibration)
     c.choiceOrNumbers("--miscalibration", s.miscalibration, s.miscalibrationDeg, {"none", "random"}, offsetElements(),
                       "injected camera offsets: none, random (+-3 deg each, from --seed) or body, top and bottom "
@@ -272,6 +277,7 @@ void CommandLine::declare() {
     c.gl();
     seedJsonField(c);
     c.text("--lighting", s.lighting, "SPEC", kLightingHelp + " (default " + s.lighting + ")");
+    c.text("--venue", s.venue, "NAME", kVenueLookHelp + " (default " + s.venue + ")", venueProblem);
     c.inputFile("--model", s.model, "the robot's MJCF (default models/nao_v6.xml)");
     c.number("--seconds", s.seconds, 1, 600, "s", "simulated seconds per physics run (camera runs: at most 10)");
     c.count("--repeats", s.repeats, 1, 20, "runs per figure; the median is reported");
@@ -359,6 +365,8 @@ void CommandLine::declare() {
     seedJsonField(c);
     c.count("--trials", p.trials, 1, 10000, "random scenes, each rendered by both cameras");
     c.text("--lighting", p.lighting, "SPEC", "sweep (every preset of the sweep) or " + kLightingHelp + " (default sweep)");
+    c.text("--venue", p.venue, "NAME", kVenueLookHelp + "; random: trial t at the look of seed + t (default random)",
+           venueProblem);
     c.number("--max-offset", p.maxOffset, 0, 10, "deg", "injected camera offsets, uniform in +-DEG, told to the model");
     c.outputFolder("--images", p.images, "write annotated frames to DIR");
     c.count("--images-every", p.imagesEvery, 1, 10000, "annotate every N-th scene")->needs("--images");
@@ -403,8 +411,11 @@ void CommandLine::declare() {
     ck.number("--max-offset", k.maxOffset, 0, 10, "deg", "injected offsets, uniform in +-DEG per parameter");
     ck.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "the solver scored (the other is compared)");
     ck.number("--time-limit", k.timeLimit, 1, 600, "s", "each trial's calibration phase (the rules' 10 min; shorter for a quick look)");
+    ck.text("--venue", k.venue, "NAME", kVenueLookHelp + "; random: trial t at the look of seed + t (default random)",
+            venueProblem);
 
     const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
+    ck.flag("--randomize", k.randomize, randomize + " (the head's aside)");
 
     EvalLocalizationOptions& l = o.evalLocalization;
     Command& cl = leaf(eval, "localization",
@@ -555,7 +566,7 @@ void CommandLine::declare() {
     Command& c = leaf(root, "calibration-challenge", "the whole Autonomous Calibration Challenge, headless: the robot program calibrates itself (phase 1), then reports both balls and walks to three spots (phase 2), scored as the referee scores", k.common);
     c.gl();
     seedJsonField(c);
-    simOptions(c, k.sim);
+    simOptions(c, k.sim, true, false);
     c.choice("--start", k.start, {"left", "right", "seed"}, "the side line the robot starts on (seed: drawn from --seed)");
     c.flag("--randomize", k.randomize, "a 'foreign' robot: link masses +-5%, joint offsets +-1 deg (the head's aside), floor friction 0.6-1.0");
     c.number("--time-limit", k.timeLimit, 1, 600, "s", "each phase's time (the rules' 10 min; shorter for a quick look: a phase over it terminates the run)");

@@ -15,6 +15,7 @@ struct SimOptions {
   std::string miscalibration = "none";     // none, random, or "numbers": miscalibrationDeg
   std::vector<double> miscalibrationDeg;  // body, top, bottom roll and pitch (deg)
   std::string model;                    // "" = models/nao_v6.xml
+  std::string venue = "none";           // --venue: none, random or a name (sim/VenueLook.h)
 };
 
 // --debug CHANNEL[,CHANNEL] and --debug-out FILE (robot/Debug.h).
@@ -55,6 +56,7 @@ struct RunOptions {
 struct BenchSimOptions {
   CommonOptions common;
   std::string lighting = "default", model;
+  std::string venue = "none";
   double seconds = 20;
   int repeats = 3;
   bool profile = false;
@@ -102,6 +104,7 @@ struct PerceiveOptions {
 struct EvalPerceptionOptions {
   CommonOptions common;
   std::string lighting = "sweep", images, failures;
+  std::string venue = "random";
   std::string percepts = "vision", fitOracle;  // --percepts, --fit-oracle FILE
   int trials = 300, imagesEvery = 25;
   double maxOffset = 1;
@@ -116,6 +119,8 @@ struct EvalRealOptions {
 struct EvalCalibrationOptions {
   CommonOptions common;
   std::string lighting = "sweep", solver = "gauss-newton";
+  std::string venue = "random";
+  bool randomize = false;
   int trials = 100;
   double maxOffset = 3, timeLimit = 600;
 };
