@@ -52,7 +52,7 @@ const std::string kOpponentHelp =
     "kick at the goal) or DIR, a robot program configuration (modules.json, parameters/)";
 
 const std::string kLightingHelp =
-    "lighting: a preset (default, bright, dark, warm, cold, shadows) or a key=value list "
+    "lighting: a preset (default, bright, dark, warm, cold, shadows, noisy, shadows-low-dim, dim) or a key=value list "
     "(intensity, temperature, shadows, elevation, azimuth, ambient, noise; the camera model's camera, ae, awb, "
     "vignetting, defocus, motion = on|off; config/lighting.json, config/camera_sensor.json)";
 

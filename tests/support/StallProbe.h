@@ -53,14 +53,16 @@ class StallProbe {
     std::lock_guard<std::mutex> lock(mutex_);
     int over5 = 0, over12 = 0;
     double max = 0;
+    nlohmann::json intervals = nlohmann::json::array();  // [due, woke], monotonic s (as the program's times)
     for (const auto& [due, woke] : stalls_) {
       const double ms = (woke - due) * 1000;
       over5 += ms > 5;
       over12 += ms > 12;
       max = std::max(max, ms);
+      intervals.push_back({due, woke});
     }
     return {{"over_2ms", stalls_.size()}, {"over_5ms", over5}, {"over_12ms", over12}, {"max_ms", max},
-            {"real_time", realTime_.load()}};
+            {"real_time", realTime_.load()}, {"intervals", intervals}};
   }
 
  private:
