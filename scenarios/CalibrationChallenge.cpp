@@ -283,6 +283,19 @@ nlohmann::json challengeJson(const ChallengeOptions& o, const ChallengeResult& r
                         {"verify_angle_deg", r.calibration.verifyAngleDeg},
                         {"reprojection_px", r.calibration.reprojectionPx}};
   j["path_m"] = r.pathLength;
+  // The truth against the robot's belief once a simulated second and at the end (the pictures
+  // use all of it).
+  nlohmann::json track = nlohmann::json::array();
+  double nextTrack = 0;
+  auto pose = [](const Eigen::Vector3d& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
+  for (std::size_t i = 0; i < r.track.size(); ++i) {
+    const ChallengeSession::Track& k = r.track[i];
+    // ... and the last one: the run ends with a report.
+    if (k.t + 1e-9 < nextTrack && i + 1 < r.track.size()) continue;
+    track.push_back({{"t", k.t}, {"truth", pose(k.truth)}, {"belief", pose(k.belief)}, {"valid", k.beliefValid}});
+    nextTrack = std::floor(k.t + 1e-9) + 1;
+  }
+  j["track"] = track;
   nlohmann::json events = nlohmann::json::array();
   for (const ChallengeEvent& ev : r.events) events.push_back({{"t", ev.t}, {"kind", ev.kind}, {"text", ev.text}});
   j["events"] = events;

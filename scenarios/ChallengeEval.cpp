@@ -72,6 +72,7 @@ nlohmann::json runChallengeTrial(const ChallengeEvalOptions& o, std::uint64_t se
   for (const ChallengeEvent& e : r.events)
     if (e.kind == "termination") termination = {{"t", e.t}, {"text", e.text}};
   row.erase("events");
+  row.erase("track");  // a row per trial stays small; the replay command gives it
   row["termination_event"] = termination;
   row["settings"] = challengeEvalSettings(o);
   // The command that plays this trial alone.

@@ -10,6 +10,7 @@
 
 #include "robot/Error.h"
 #include "robot/InputFiles.h"
+#include "sim/Lighting.h"
 
 namespace nao::sim {
 
@@ -42,6 +43,34 @@ struct FastRng {
     return s * 0x2545F4914F6CDD1DULL;
   }
 };
+
+// The tint G / sqrt(R B) of a black body whose R / B is `rOverB` (1800-12000 K; the light's
+// colour of sim/Lighting). Grey surfaces under any such light lie on this curve; a greenish
+// grey (carpet showing through worn paint, a line's edge blurred into the carpet, a sheen on
+// the carpet) lies above it and must not steer the white balance, or the whites turn magenta.
+float blackBodyTint(float rOverB) {
+  struct Point {
+    float logRb, tint;
+  };
+  static const std::vector<Point> locus = [] {
+    std::vector<Point> l;
+    for (double t = 12000; t >= 1800; t -= 100) {
+      Lighting light;
+      light.temperature = t;
+      const Eigen::Vector3d c = light.colour();
+      l.push_back({static_cast<float>(std::log(c.x() / c.z())), static_cast<float>(c.y() / std::sqrt(c.x() * c.z()))});
+    }
+    return l;
+  }();
+  const float x = std::log(rOverB);
+  if (x <= locus.front().logRb) return locus.front().tint;
+  if (x >= locus.back().logRb) return locus.back().tint;
+  const auto hi = std::lower_bound(locus.begin(), locus.end(), x, [](const Point& p, float v) { return p.logRb < v; });
+  const auto lo = hi - 1;
+  return lo->tint + (hi->tint - lo->tint) * (x - lo->logRb) / (hi->logRb - lo->logRb);
+}
+
+constexpr float kAwbTintTolerance = 0.1f;  // a grey's tint off the black-body curve
 
 inline float clamp255(float v) { return v < 0 ? 0 : (v > 255 ? 255 : v); }
 inline std::uint8_t toByte(float v) { return static_cast<std::uint8_t>(clamp255(v) + 0.5f); }
@@ -139,8 +168,8 @@ CameraSensor::Metering CameraSensor::meter(const cv::Mat& rgb, const Eigen::Vect
                                          const Eigen::Vector3d& gains) const {
   // Every 4th pixel of every 4th row: the image as it comes out at `gains` (clipped, vignetted)
   // for the exposure, and the bright, nearly grey pixels of the scene for the white balance.
-  // "Nearly grey" allows any black body's tint (G / sqrt(R B) from 1.0 at 6500 K to 1.35 at
-  // 2300 K) and excludes the carpet (about 2.6).
+  // "Nearly grey": near the tint of a black body of the same R / B (blackBodyTint: G / sqrt(R B)
+  // from 1.0 at 6500 K to 1.35 at 2300 K); the carpet (about 2.6) and greenish greys are out.
   Metering m;
   m.brightness = gains[1];
   const Eigen::Vector3f scale = gains.cwiseQuotient(renderedGains).cast<float>();
@@ -168,8 +197,9 @@ CameraSensor::Metering CameraSensor::meter(const cv::Mat& rgb, const Eigen::Vect
         continue;
       }
       if (px[0] > 8 && px[2] > 4) {
-        const float grey = G / std::sqrt(R * B);
-        if (grey > 0.75f && grey < 1.45f) candidates.push_back({R, G, B, y});
+        const float grey = G / std::sqrt(R * B), rb = R / B;
+        if (rb > 0.4f && rb < 6.0f && std::abs(grey - blackBodyTint(rb)) < kAwbTintTolerance)
+          candidates.push_back({R, G, B, y});
       }
     }
   }

@@ -69,6 +69,28 @@ TEST(CalibrationChallenge, SeedOneScoresWithinTheBoundsAndAgainTheSame) {
   for (int k = 0; k < 6; ++k) EXPECT_LE(std::abs(a["offsets"]["error_deg"][k].get<double>()), 0.15) << k;
   EXPECT_TRUE(a["offsets"]["applied"].get<bool>());
   EXPECT_GT(a["path_m"].get<double>(), 10.0) << "three spots, two balls: metres of walking";
+  // The track: the truth and the robot's belief once a second and at the end; at each walk
+  // report the robot stands where the referee measured it, and believes itself there.
+  const nlohmann::json& track = a["track"];
+  ASSERT_GE(track.size(), static_cast<std::size_t>(calibration + evaluation));
+  for (std::size_t i = 1; i + 1 < track.size(); ++i)
+    EXPECT_NEAR(track[i]["t"].get<double>() - track[i - 1]["t"].get<double>(), 1.0, 0.02) << i;
+  int walksChecked = 0;
+  for (const auto& e : a["events"]) {
+    if (e["kind"] != "task" || e["text"].get<std::string>().rfind("walk_", 0) != 0) continue;
+    const std::string task = e["text"].get<std::string>().substr(0, e["text"].get<std::string>().find(':'));
+    const auto& report = *std::find_if(a["tasks"].begin(), a["tasks"].end(), [&](const nlohmann::json& t) { return t["task"] == task; });
+    const auto at = std::min_element(track.begin(), track.end(), [&](const nlohmann::json& p, const nlohmann::json& q) {
+      return std::abs(p["t"].get<double>() - e["t"].get<double>()) < std::abs(q["t"].get<double>() - e["t"].get<double>());
+    });
+    ASSERT_LE(std::abs((*at)["t"].get<double>() - e["t"].get<double>()), 0.5);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR((*at)["truth"][k].get<double>(), report["reported"][k].get<double>(), 0.03) << task;
+      EXPECT_NEAR((*at)["belief"][k].get<double>(), report["truth"][k].get<double>(), 0.1) << task;
+    }
+    ++walksChecked;
+  }
+  EXPECT_EQ(walksChecked, 3);
   // The event log: the referee's buttons and taps, the robot's speech, in order of time.
   int taps = 0, speech = 0;
   double last = -1;
