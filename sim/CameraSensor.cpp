@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
@@ -44,17 +45,19 @@ struct FastRng {
   }
 };
 
-// The tint G / sqrt(R B) of a black body whose R / B is `rOverB` (1800-12000 K; the light's
-// colour of sim/Lighting). Grey surfaces under any such light lie on this curve; a greenish
-// grey (carpet showing through worn paint, a line's edge blurred into the carpet, a sheen on
-// the carpet) lies above it and must not steer the white balance, or the whites turn magenta.
-float blackBodyTint(float rOverB) {
+// How far a colour's tint G / sqrt(R B) lies from that of a black body with the same R / B
+// (the light's colours of sim/Lighting, 2200-12000 K; below 2200 K its fit loses the blue;
+// bluer than 12000 K: that of 12000 K); infinite outside R / B 0.4-6. Grey surfaces under any
+// such light lie on the curve; a greenish grey (carpet showing through worn paint, a line's
+// edge blurred into the carpet, a sheen on the carpet) lies above it and must not steer the
+// white balance, or the whites turn magenta.
+float offBlackBody(float r, float g, float b) {
   struct Point {
     float logRb, tint;
   };
   static const std::vector<Point> locus = [] {
     std::vector<Point> l;
-    for (double t = 12000; t >= 1800; t -= 100) {
+    for (double t = 12000; t >= 2200; t -= 100) {
       Lighting light;
       light.temperature = t;
       const Eigen::Vector3d c = light.colour();
@@ -62,12 +65,12 @@ float blackBodyTint(float rOverB) {
     }
     return l;
   }();
-  const float x = std::log(rOverB);
-  if (x <= locus.front().logRb) return locus.front().tint;
-  if (x >= locus.back().logRb) return locus.back().tint;
+  const float rb = r / b, x = std::log(rb), tint = g / std::sqrt(r * b);
+  if (!(rb > 0.4f && rb < 6.0f)) return std::numeric_limits<float>::infinity();
+  if (x <= locus.front().logRb) return std::abs(tint - locus.front().tint);
   const auto hi = std::lower_bound(locus.begin(), locus.end(), x, [](const Point& p, float v) { return p.logRb < v; });
   const auto lo = hi - 1;
-  return lo->tint + (hi->tint - lo->tint) * (x - lo->logRb) / (hi->logRb - lo->logRb);
+  return std::abs(tint - (lo->tint + (hi->tint - lo->tint) * (x - lo->logRb) / (hi->logRb - lo->logRb)));
 }
 
 constexpr float kAwbTintTolerance = 0.1f;  // a grey's tint off the black-body curve
@@ -168,8 +171,8 @@ CameraSensor::Metering CameraSensor::meter(const cv::Mat& rgb, const Eigen::Vect
                                          const Eigen::Vector3d& gains) const {
   // Every 4th pixel of every 4th row: the image as it comes out at `gains` (clipped, vignetted)
   // for the exposure, and the bright, nearly grey pixels of the scene for the white balance.
-  // "Nearly grey": near the tint of a black body of the same R / B (blackBodyTint: G / sqrt(R B)
-  // from 1.0 at 6500 K to 1.35 at 2300 K); the carpet (about 2.6) and greenish greys are out.
+  // "Nearly grey": near the tint of a black body of the same R / B (offBlackBody: G / sqrt(R B)
+  // from 1.0 at 6500 K to 1.33 at 2300 K); the carpet (about 2.6) and greenish greys are out.
   Metering m;
   m.brightness = gains[1];
   const Eigen::Vector3f scale = gains.cwiseQuotient(renderedGains).cast<float>();
@@ -197,9 +200,7 @@ CameraSensor::Metering CameraSensor::meter(const cv::Mat& rgb, const Eigen::Vect
         continue;
       }
       if (px[0] > 8 && px[2] > 4) {
-        const float grey = G / std::sqrt(R * B), rb = R / B;
-        if (rb > 0.4f && rb < 6.0f && std::abs(grey - blackBodyTint(rb)) < kAwbTintTolerance)
-          candidates.push_back({R, G, B, y});
+        if (offBlackBody(R, G, B) < kAwbTintTolerance) candidates.push_back({R, G, B, y});
       }
     }
   }
