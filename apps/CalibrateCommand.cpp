@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "apps/Cli.h"
+#include "apps/Rows.h"
 #include "apps/Commands.h"
 #include "apps/SimOptions.h"
 #include "controllers/CalibrationLogging.h"
@@ -21,6 +22,7 @@
 #include "robot/Error.h"
 #include "robot/Paths.h"
 #include "scenarios/Calibrate.h"
+#include "scenarios/EvalRows.h"
 
 namespace nao::cli {
 namespace {
@@ -226,8 +228,57 @@ int calibrateCommand(const CalibrateOptions& options) {
   return r.finished && r.applied && r.solution.accepted ? 0 : 1;
 }
 
+// The aggregate of eval calibration's rows (each a trial's runJson with its seed, settings,
+// lighting, venue and start side).
+nlohmann::json aggregateCalibrationRows(std::vector<nlohmann::json> rows) {
+  std::sort(rows.begin(), rows.end(),
+            [](const nlohmann::json& a, const nlohmann::json& b) { return a.at("seed").get<std::uint64_t>() < b.at("seed").get<std::uint64_t>(); });
+  std::array<std::vector<double>, 6> errors;
+  std::vector<double> reprojection, solveSeconds, phaseSeconds;
+  int converged = 0, accepted = 0, finished = 0;
+  double agreement = 0, solveMax = 0, otherSolveMax = 0;
+  const bool compare = !rows.empty() && rows.front().at("settings").at("compare_solvers").get<bool>();
+  for (const nlohmann::json& r : rows) {
+    const nlohmann::json* other = r.contains("other_solver") ? &r.at("other_solver") : nullptr;
+    converged += r.at("converged").get<bool>() && (!compare || (other && other->at("converged").get<bool>()));
+    accepted += r.at("accepted").get<bool>() && r.at("applied").get<bool>();
+    finished += r.at("finished").get<bool>();
+    for (int k = 0; k < 6; ++k) {
+      errors[k].push_back(std::abs(r.at("error_deg").at(CameraCalibration::kNames[k]).get<double>()));
+      if (other) agreement = std::max(agreement, std::abs(other->at("difference_deg").at(CameraCalibration::kNames[k]).get<double>()));
+    }
+    reprojection.push_back(r.at("reprojection_px").get<double>());
+    solveSeconds.push_back(r.at("solve_s").get<double>());
+    solveMax = std::max(solveMax, solveSeconds.back());
+    if (other) otherSolveMax = std::max(otherSolveMax, other->at("solve_s").get<double>());
+    phaseSeconds.push_back(r.at("phase_s").get<double>());
+  }
+  auto q = [](std::vector<double> v, double p) { return v.empty() ? 0.0 : sim::quantile(v, p); };
+  std::array<double, 6> median{}, p95{}, max{};
+  for (int k = 0; k < 6; ++k) {
+    median[k] = q(errors[k], 0.5);
+    p95[k] = q(errors[k], 0.95);
+    max[k] = q(errors[k], 1.0);
+  }
+  nlohmann::json j = {{"trials", rows.size()},
+                      {"converged", converged},
+                      {"accepted", accepted},
+                      {"finished", finished},
+                      {"median_abs_error_deg", paramsValue(median)},
+                      {"p95_abs_error_deg", paramsValue(p95)},
+                      {"max_abs_error_deg", paramsValue(max)},
+                      {"reprojection_px", {{"median", q(reprojection, 0.5)}, {"p95", q(reprojection, 0.95)}, {"max", q(reprojection, 1.0)}}},
+                      {"solver_agreement_max_deg", agreement},
+                      {"solve_s", {{"median", q(solveSeconds, 0.5)}, {"max", solveMax}, {"other_solver_max", otherSolveMax}}},
+                      {"phase_s", {{"median", q(phaseSeconds, 0.5)}, {"max", q(phaseSeconds, 1.0)}}},
+                      {"per_trial", rows}};
+  if (!rows.empty()) j["settings"] = rows.front().at("settings");
+  return j;
+}
+
 // eval calibration: --trials N random cases (offsets +-3 deg per parameter, a random lighting
-// preset and start side), each the robot program's phase 1, its solve checked by the other solver.
+// preset and start side), each the robot program's phase 1, its solve checked by the other
+// solver; one row per trial (--rows FILE: resumable).
 int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   sim::CalibrationEvalOptions o;
   o.field = calibrationFieldFrom(options.common);
@@ -239,40 +290,50 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   o.venue = venueFrom(options.venue);
   o.randomize = options.randomize;
   o.solver = cal::parseSolver(options.solver);
-  o.progress = [](int done, int total) { progress("eval calibration", done, total); };
-  const sim::CalibrationEvalResult r = sim::evalCalibration(o);
-
-  nlohmann::json trials = nlohmann::json::array();
-  for (const auto& t : r.trialResults) {
-    nlohmann::json tj = runJson(t.run);
-    tj["lighting"] = t.lighting;
-    tj["venue"] = t.venue;
-    tj["start"] = t.side > 0 ? "left" : "right";
-    trials.push_back(tj);
-  }
-  nlohmann::json j = {{"trials", r.trials},
-                      {"converged", r.converged},
-                      {"accepted", r.accepted},
-                      {"median_abs_error_deg", paramsValue(r.medianAbsErrorDeg)},
-                      {"p95_abs_error_deg", paramsValue(r.p95AbsErrorDeg)},
-                      {"max_abs_error_deg", paramsValue(r.maxAbsErrorDeg)},
-                      {"reprojection_px", {{"median", r.reprojectionMedianPx}, {"p95", r.reprojectionP95Px}, {"max", r.reprojectionMaxPx}}},
-                      {"solver", cal::solverName(o.solver)},
-                      {"solver_agreement_max_deg", r.solverAgreementMaxDeg},
-                      {"solve_s", {{"median", r.solveSecondsMedian}, {"max", r.solveSecondsMax}, {"other_solver_max", r.otherSolveSecondsMax}}},
-                      {"max_offset_deg", o.maxOffsetDeg},
-                      {"finished", r.finished},
-                      {"phase_s", {{"median", r.phaseSecondsMedian}, {"max", r.phaseSecondsMax}}},
-                      {"seed", o.seed},
-                      {"venue", venueJson(o.venue)},
-                      {"randomize", o.randomize},
-                      {"per_trial", trials}};
+  nlohmann::json lightings = nlohmann::json::array();
+  for (const sim::Lighting& l : o.lightings) lightings.push_back(l.name);
+  // What a row was drawn from: rows of other settings are refused.
+  const nlohmann::json settings = {{"max_offset_deg", o.maxOffsetDeg},
+                                   {"lightings", lightings},
+                                   {"venue", venueJson(o.venue)},
+                                   {"randomize", o.randomize},
+                                   {"solver", cal::solverName(o.solver)},
+                                   {"compare_solvers", o.compareSolvers},
+                                   {"time_limit_s", o.timeLimit},
+                                   {"robot_model", o.robotModel},
+                                   {"field", {{"length", o.field.length}, {"width", o.field.width}}}};
+  std::vector<nlohmann::json> done;
+  if (!options.rows.empty()) done = readRows(options.rows, "eval calibration");
+  RowWriter writeRow(options.rows);
+  const std::vector<std::uint64_t> seeds = sim::trialSeeds(o.seed, o.trials, {}, "--trials");
+  nlohmann::json j = aggregateCalibrationRows(sim::collectRows(
+      seeds, sim::rowsBySeed(std::move(done), settings),
+      [&](std::uint64_t seed) {
+        const sim::CalibrationTrial t = sim::runCalibrationTrial(o, seed);
+        nlohmann::json row = runJson(t.run);
+        row["seed"] = seed;
+        row["settings"] = settings;
+        row["lighting"] = t.lighting;
+        row["venue"] = t.venue;
+        row["start"] = t.side > 0 ? "left" : "right";
+        return row;
+      },
+      [&](const nlohmann::json& row) { writeRow(row); },
+      [](const nlohmann::json&, int finished, int total) { progress("eval calibration", finished, total); }));
+  j["solver"] = cal::solverName(o.solver);
+  j["max_offset_deg"] = o.maxOffsetDeg;
+  j["seed"] = o.seed;
+  j["venue"] = venueJson(o.venue);
+  j["randomize"] = o.randomize;
   std::fprintf(stderr, "eval calibration: %d trials, %d converged (both solvers), %d accepted; reprojection median %.2f px, max %.2f px; GN vs Ceres <= %.4f deg; solve <= %.3f s\n",
-               r.trials, r.converged, r.accepted, r.reprojectionMedianPx, r.reprojectionMaxPx, r.solverAgreementMaxDeg,
-               std::max(r.solveSecondsMax, r.otherSolveSecondsMax));
+               j["trials"].get<int>(), j["converged"].get<int>(), j["accepted"].get<int>(), j["reprojection_px"]["median"].get<double>(),
+               j["reprojection_px"]["max"].get<double>(), j["solver_agreement_max_deg"].get<double>(),
+               std::max(j["solve_s"]["max"].get<double>(), j["solve_s"]["other_solver_max"].get<double>()));
   for (int k = 0; k < 6; ++k)
     std::fprintf(stderr, "  %-13s median %.3f  p95 %.3f  max %.3f deg\n", CameraCalibration::kNames[k],
-                 r.medianAbsErrorDeg[k], r.p95AbsErrorDeg[k], r.maxAbsErrorDeg[k]);
+                 j["median_abs_error_deg"][CameraCalibration::kNames[k]].get<double>(),
+                 j["p95_abs_error_deg"][CameraCalibration::kNames[k]].get<double>(),
+                 j["max_abs_error_deg"][CameraCalibration::kNames[k]].get<double>());
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;
 }

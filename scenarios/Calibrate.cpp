@@ -334,39 +334,45 @@ void runCalibrationPhase(ChallengeSession& session, const CalibrationRunOptions&
   result.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 }
 
-CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {
-  if (o.trials < 1) throw Error("--trials", "must be at least 1");
+CalibrationTrial runCalibrationTrial(const CalibrationEvalOptions& o, std::uint64_t seed) {
   if (o.lightings.empty()) throw Error("calibration eval", "no lighting presets");
   modules::Calibrator::Params calibrator =
       loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
   calibrator.solver = cal::solverName(o.solver);
   calibrator.compareSolvers = o.compareSolvers;
+  std::mt19937_64 rng(seed * 1000003ULL);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  CalibrationRunOptions run;
+  run.field = o.field;
+  run.robotModel = o.robotModel;
+  std::array<double, 6> offsets{};
+  for (double& v : offsets) v = uni(rng) * o.maxOffsetDeg * kDeg;
+  run.miscalibration = CameraCalibration::fromArray(offsets);
+  const std::size_t li = static_cast<std::size_t>(rng() % o.lightings.size());
+  run.lighting = o.lightings[li];
+  run.side = rng() % 2 ? 1 : -1;
+  run.calibrator = calibrator;
+  run.seed = seed * 7919;
+  run.timeLimit = o.timeLimit;
+  run.venue = o.venue.forSeed(seed);
+  run.randomize = o.randomize;
+
+  CalibrationTrial trial;
+  trial.lighting = run.lighting.name;
+  trial.venue = run.venue.name;
+  trial.side = run.side;
+  trial.run = runCalibration(run);
+  return trial;
+}
+
+CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& o) {
+  if (o.trials < 1) throw Error("--trials", "must be at least 1");
+  if (o.lightings.empty()) throw Error("calibration eval", "no lighting presets");
   CalibrationEvalResult result;
   std::array<std::vector<double>, 6> errors;
   std::vector<double> reprojection, solveSeconds, phaseSeconds;
   for (int t = 0; t < o.trials; ++t) {
-    std::mt19937_64 rng(o.seed * 1000003ULL + static_cast<std::uint64_t>(t));
-    std::uniform_real_distribution<double> uni(-1, 1);
-    CalibrationRunOptions run;
-    run.field = o.field;
-    run.robotModel = o.robotModel;
-    std::array<double, 6> offsets{};
-    for (double& v : offsets) v = uni(rng) * o.maxOffsetDeg * kDeg;
-    run.miscalibration = CameraCalibration::fromArray(offsets);
-    const std::size_t li = static_cast<std::size_t>(rng() % o.lightings.size());
-    run.lighting = o.lightings[li];
-    run.side = rng() % 2 ? 1 : -1;
-    run.calibrator = calibrator;
-    run.seed = o.seed * 7919 + static_cast<std::uint64_t>(t);
-    run.timeLimit = o.timeLimit;
-    run.venue = o.venue.forSeed(o.seed + static_cast<std::uint64_t>(t));
-    run.randomize = o.randomize;
-
-    CalibrationTrial trial;
-    trial.lighting = run.lighting.name;
-    trial.venue = run.venue.name;
-    trial.side = run.side;
-    trial.run = runCalibration(run);
+    CalibrationTrial trial = runCalibrationTrial(o, o.seed + static_cast<std::uint64_t>(t));
     const CalibrationRunResult& res = trial.run;
     ++result.trials;
     result.finished += res.finished;

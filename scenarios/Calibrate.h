@@ -129,7 +129,7 @@ struct CalibrationEvalOptions {
   calibration::SolverKind solver = calibration::SolverKind::GaussNewton;
   bool compareSolvers = true;             // the robot's calibrator checks its solve with the other solver
   double timeLimit = 600;                 // s of each trial's phase
-  VenueChoice venue;                      // trial t's look: venue.forSeed(seed + t)
+  VenueChoice venue;                      // the look of trial seed s: venue.forSeed(s)
   bool randomize = false;                 // foreign robots (ChallengeSetup::randomize)
   std::function<void(int done, int total)> progress;
 };
@@ -151,6 +151,9 @@ struct CalibrationEvalResult {
   std::vector<CalibrationTrial> trialResults;
 };
 
+// One trial, everything drawn from `seed` (offsets, lighting, start side, look, the robot):
+// trial t of evalCalibration is seed options.seed + t, so rows of other runs combine.
+CalibrationTrial runCalibrationTrial(const CalibrationEvalOptions& options, std::uint64_t seed);
 CalibrationEvalResult evalCalibration(const CalibrationEvalOptions& options);
 
 // Quantile q (0..1) by nearest rank of the sorted values; 0 for none.

@@ -235,5 +235,69 @@ TEST(CalibrateCommand, BadOptionsGiveOneLine) {
   }
 }
 
+// The wall-clock figures of a row or an aggregate (they differ between two runs of one trial).
+nlohmann::json withoutTimes(nlohmann::json j) {
+  if (j.is_object()) {
+    for (const char* key : {"wall_s", "extract_ms", "solve_s"}) j.erase(key);
+    for (auto& [key, value] : j.items()) value = withoutTimes(value);
+  } else if (j.is_array()) {
+    for (auto& value : j) value = withoutTimes(value);
+  }
+  return j;
+}
+
+std::string fileText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// eval calibration writes a row per trial as it ends. A row cut short runs again and the
+// aggregate comes out as uninterrupted; a trial is its seed's alone (seed 2 run by itself gives
+// the second row); rows of other settings are refused. (2 s phases: no sample, the offsets'
+// errors are the injected ones.)
+TEST(EvalCalibration, RowsResumeAndEachTrialIsItsSeeds) {
+  const auto dir = std::filesystem::temp_directory_path() / "nao_eval_calibration_rows";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string rows = (dir / "rows.jsonl").string();
+  const std::string common = "eval calibration --trials 2 --time-limit 2 --lighting default --rows " + rows;
+  ASSERT_EQ(runCommand(common + " --json " + (dir / "a.json").string()).code, 0);
+  const std::string text = fileText(rows);
+  ASSERT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
+  const nlohmann::json a = readJson((dir / "a.json").string());
+  EXPECT_EQ(a["trials"], 2);
+  ASSERT_EQ(a["per_trial"].size(), 2u);
+  EXPECT_EQ(a["per_trial"][1]["seed"], 2);
+  // Nothing calibrated in 2 s: each error is the injected offset (up to 3 deg), the largest of
+  // the two trials is the aggregate's maximum.
+  for (int k = 0; k < 6; ++k) {
+    const char* name = CameraCalibration::kNames[k];
+    double largest = 0;
+    for (const auto& t : a["per_trial"]) {
+      EXPECT_NEAR(t["error_deg"][name].get<double>(), -t["true_deg"][name].get<double>(), 1e-9) << name;
+      largest = std::max(largest, std::abs(t["true_deg"][name].get<double>()));
+    }
+    EXPECT_LE(largest, 3.0);
+    EXPECT_DOUBLE_EQ(a["max_abs_error_deg"][name].get<double>(), largest) << name;
+  }
+  // The second row cut in the middle: its trial runs again, the first does not.
+  std::ofstream(rows, std::ios::trunc) << text.substr(0, text.find('\n') + 1 + 40);
+  const CommandResult again = runCommand(common + " --json " + (dir / "b.json").string());
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("line 2 is truncated"), std::string::npos) << again.out;
+  EXPECT_EQ(withoutTimes(readJson((dir / "b.json").string())), withoutTimes(a));
+  const std::string resumed = fileText(rows);
+  EXPECT_EQ(resumed.substr(0, text.find('\n')), text.substr(0, text.find('\n'))) << "the first trial ran again";
+  // Seed 2 alone is the second trial.
+  ASSERT_EQ(runCommand("eval calibration --seed 2 --trials 1 --time-limit 2 --lighting default --json " +
+                       (dir / "c.json").string()).code, 0);
+  EXPECT_EQ(withoutTimes(readJson((dir / "c.json").string())["per_trial"][0]), withoutTimes(a["per_trial"][1]));
+  // Other settings: refused, nothing run.
+  const CommandResult other = runCommand("eval calibration --trials 2 --time-limit 3 --lighting default --rows " + rows);
+  EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_NE(other.out.find("rows of other settings"), std::string::npos) << other.out;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace nao::sim

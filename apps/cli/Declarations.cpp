@@ -413,6 +413,7 @@ void CommandLine::declare() {
     ck.number("--time-limit", k.timeLimit, 1, 600, "s", "each trial's calibration phase (the rules' 10 min; shorter for a quick look)");
     ck.text("--venue", k.venue, "NAME", kVenueLookHelp + "; random: trial t at the look of seed + t (default random)",
             venueProblem);
+    ck.outputFile("--rows", k.rows, "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
 
     const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
     ck.flag("--randomize", k.randomize, randomize + " (the head's aside)");

@@ -118,7 +118,7 @@ struct EvalRealOptions {
 
 struct EvalCalibrationOptions {
   CommonOptions common;
-  std::string lighting = "sweep", solver = "gauss-newton";
+  std::string lighting = "sweep", solver = "gauss-newton", rows;
   std::string venue = "random";
   bool randomize = false;
   int trials = 100;
