@@ -48,6 +48,8 @@ class InterruptGuard {
 std::vector<std::uint64_t> evalSeeds(const std::string& path, Options& o) {
   if (path == "eval challenge") return sim::trialSeeds(o.evalChallenge.common.seed, o.evalChallenge.trials, o.evalChallenge.seeds, "--trials");
   if (path == "eval match") return sim::trialSeeds(o.evalMatch.common.seed, o.evalMatch.games, o.evalMatch.seeds, "--games");
+  if (path == "eval calibration")
+    return sim::trialSeeds(o.evalCalibration.common.seed, o.evalCalibration.trials, o.evalCalibration.seeds, "--trials");
   return sim::trialSeeds(o.evalLocalization.common.seed, o.evalLocalization.trials, o.evalLocalization.seeds, "--trials");
 }
 

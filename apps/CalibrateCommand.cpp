@@ -305,7 +305,7 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   std::vector<nlohmann::json> done;
   if (!options.rows.empty()) done = readRows(options.rows, "eval calibration");
   RowWriter writeRow(options.rows);
-  const std::vector<std::uint64_t> seeds = sim::trialSeeds(o.seed, o.trials, {}, "--trials");
+  const std::vector<std::uint64_t> seeds = sim::trialSeeds(o.seed, o.trials, options.seeds, "--trials");
   nlohmann::json j = aggregateCalibrationRows(sim::collectRows(
       seeds, sim::rowsBySeed(std::move(done), settings),
       [&](std::uint64_t seed) {

@@ -21,6 +21,7 @@
 
 #include "apps/Batch.h"
 #include "robot/Error.h"
+#include "support/JsonTimes.h"
 #include "support/RunCommand.h"
 
 namespace {
@@ -224,6 +225,27 @@ TEST_F(BatchRunners, EveryRunnerGivesTheAggregateOfOneUninterruptedRun) {
     for (const auto& [seed, n] : counts) EXPECT_EQ(n, 1) << c.runner << " seed " << seed;
     EXPECT_NE(r.out.find("seeds done"), std::string::npos) << "no progress on stderr:\n" << r.out;
   }
+}
+
+// eval calibration split into chunks of one trial each: its own aggregate, each trial once.
+// (2 s phases: a trial is a walk towards the goal box, no sample.)
+TEST(BatchCalibration, ChunksGiveTheAggregateOfOneRun) {
+  const fs::path d = tempDir("calibration");
+  const std::string eval = "eval calibration --seed 5 --trials 2 --time-limit 2 --lighting default";
+  auto r = runCommand(eval + " --json " + (d / "single.json").string(), 600);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json single = readJson(d / "single.json");
+  ASSERT_EQ(single["trials"], 2);
+  r = runCommand("batch " + eval + " --runner local --jobs 2 --chunk 1 --dir " + (d / "b").string() + " --json " +
+                     (d / "batch.json").string(),
+                 600);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json j = readJson(d / "batch.json");
+  EXPECT_EQ(j["seeds"], (std::vector<std::uint64_t>{5, 6}));
+  EXPECT_EQ(j["chunks"], 2);
+  EXPECT_EQ(nao::test::withoutTimes(result(j)), nao::test::withoutTimes(single));
+  const auto counts = seedCounts(d / "b");
+  EXPECT_EQ(counts, (std::map<std::uint64_t, int>{{5, 1}, {6, 1}}));
 }
 
 TEST_F(BatchRunners, SlurmKilledHalfWayResumesOnlyTheMissingSeeds) {

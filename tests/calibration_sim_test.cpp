@@ -26,6 +26,7 @@
 #include "perception/calibration/CalibrationStore.h"
 #include "robot/Paths.h"
 #include "scenarios/Calibrate.h"
+#include "support/JsonTimes.h"
 #include "support/RunCommand.h"
 
 namespace nao::sim {
@@ -235,17 +236,6 @@ TEST(CalibrateCommand, BadOptionsGiveOneLine) {
   }
 }
 
-// The wall-clock figures of a row or an aggregate (they differ between two runs of one trial).
-nlohmann::json withoutTimes(nlohmann::json j) {
-  if (j.is_object()) {
-    for (const char* key : {"wall_s", "extract_ms", "solve_s"}) j.erase(key);
-    for (auto& [key, value] : j.items()) value = withoutTimes(value);
-  } else if (j.is_array()) {
-    for (auto& value : j) value = withoutTimes(value);
-  }
-  return j;
-}
-
 std::string fileText(const std::string& path) {
   std::ifstream in(path);
   return std::string(std::istreambuf_iterator<char>(in), {});
@@ -285,13 +275,13 @@ TEST(EvalCalibration, RowsResumeAndEachTrialIsItsSeeds) {
   const CommandResult again = runCommand(common + " --json " + (dir / "b.json").string());
   ASSERT_EQ(again.code, 0) << again.out;
   EXPECT_NE(again.out.find("line 2 is truncated"), std::string::npos) << again.out;
-  EXPECT_EQ(withoutTimes(readJson((dir / "b.json").string())), withoutTimes(a));
+  EXPECT_EQ(test::withoutTimes(readJson((dir / "b.json").string())), test::withoutTimes(a));
   const std::string resumed = fileText(rows);
   EXPECT_EQ(resumed.substr(0, text.find('\n')), text.substr(0, text.find('\n'))) << "the first trial ran again";
   // Seed 2 alone is the second trial.
   ASSERT_EQ(runCommand("eval calibration --seed 2 --trials 1 --time-limit 2 --lighting default --json " +
                        (dir / "c.json").string()).code, 0);
-  EXPECT_EQ(withoutTimes(readJson((dir / "c.json").string())["per_trial"][0]), withoutTimes(a["per_trial"][1]));
+  EXPECT_EQ(test::withoutTimes(readJson((dir / "c.json").string())["per_trial"][0]), test::withoutTimes(a["per_trial"][1]));
   // Other settings: refused, nothing run.
   const CommandResult other = runCommand("eval calibration --trials 2 --time-limit 3 --lighting default --rows " + rows);
   EXPECT_EQ(other.code, 2) << other.out;

@@ -104,11 +104,11 @@ void seedsOption(Command& c, std::vector<std::uint64_t>& seeds, const std::strin
 // What batch runs: `eval TARGET [options]` of an evaluation with rows, its options as valid as
 // they would be alone; --rows is batch's. Throws nao::Error naming the word.
 void checkBatchEval(const std::vector<std::string>& args) {
-  if (args.empty()) throw Error("batch", "needs the evaluation to run: batch eval challenge|match|localization [its options]");
+  if (args.empty()) throw Error("batch", "needs the evaluation to run: batch eval challenge|match|localization|calibration [its options]");
   if (args[0] != "eval") {
     if (args[0].size() > 1 && args[0][0] == '-')
       throw Error(args[0].substr(0, args[0].find('=')), "not an option of 'batch' (nao-soccer batch --help lists them)");
-    throw Error(args[0], "unexpected argument for 'batch' (batch eval challenge|match|localization [its options])");
+    throw Error(args[0], "unexpected argument for 'batch' (batch eval challenge|match|localization|calibration [its options])");
   }
   CommandLine inner;
   std::vector<const char*> argv{"nao-soccer"};
@@ -116,9 +116,9 @@ void checkBatchEval(const std::vector<std::string>& args) {
   std::string help;
   const Command* c = inner.parse(static_cast<int>(argv.size()), argv.data(), help);
   if (!c) throw Error("--help", "batch runs an evaluation, it does not print its help (nao-soccer " + args[0] + " --help)");
-  static const std::set<std::string> withRows = {"eval challenge", "eval match", "eval localization"};
+  static const std::set<std::string> withRows = {"eval challenge", "eval match", "eval localization", "eval calibration"};
   if (!withRows.count(c->path()))
-    throw Error(c->path(), "has no rows to split yet (batch runs eval challenge, eval match and eval localization)");
+    throw Error(c->path(), "has no rows to split yet (batch runs eval challenge, eval match, eval localization and eval calibration)");
   for (const auto& a : args)
     if (a == "--rows" || a.rfind("--rows=", 0) == 0) throw Error("--rows", "batch keeps the rows itself: one file per chunk in --dir");
 }
@@ -414,6 +414,7 @@ void CommandLine::declare() {
     ck.text("--venue", k.venue, "NAME", kVenueLookHelp + "; random: trial t at the look of seed + t (default random)",
             venueProblem);
     ck.outputFile("--rows", k.rows, "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
+    seedsOption(ck, k.seeds, "--trials");
 
     const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
     ck.flag("--randomize", k.randomize, randomize + " (the head's aside)");
@@ -606,7 +607,7 @@ void CommandLine::declare() {
   {
     BatchOptions& b = o.batch;
     Command& c = leaf(root, "batch",
-                      "an evaluation (eval challenge|match|localization and its options) split into chunks of seeds "
+                      "an evaluation (eval challenge|match|localization|calibration and its options) split into chunks of seeds "
                       "on a runner: processes here, GNU parallel (over ssh hosts too) or a Slurm job array; the "
                       "chunks' rows merged into the evaluation's own aggregate",
                       b.common);
@@ -618,7 +619,7 @@ void CommandLine::declare() {
                    "the batch's folder: its plan, one rows file and one log per chunk, the merged rows and aggregate "
                    "(default batch-TARGET, e.g. batch-challenge)");
     c.count("--chunk", b.chunk, 0, 100000,
-            "seeds per task (0: the evaluation's own, about a minute of work or more: 1 challenge or game, 4 "
+            "seeds per task (0: the evaluation's own, about a minute of work or more: 1 challenge, game or calibration, 4 "
             "localization trials)");
     c.count("--jobs", b.jobs, 0, 4096, "tasks at once for local and parallel (0: one per core)");
     auto* ssh = c.text("--sshlogin", b.sshlogin, "HOSTS",

@@ -123,6 +123,7 @@ struct EvalCalibrationOptions {
   bool randomize = false;
   int trials = 100;
   double maxOffset = 3, timeLimit = 600;
+  std::vector<std::uint64_t> seeds;  // --seeds: exactly these trials
 };
 
 struct EvalLocalizationOptions {
