@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "controllers/modules/ModuleField.h"
 #include "perception/calibration/CalibrationCost.h"
@@ -50,6 +51,8 @@ Calibrator::Calibrator(const ModuleContext& context) : params_(context.load<Para
   extraction_.goalBoxDepth = field.goalBoxAreaLength;
   extraction_.lineWidth = field.lineWidth;
   solver_.cost = calibration::CostOptions::forField(field);
+  solver_.cost.depthSigma = params_.depthSigmaM;
+  solver_.cost.angleSigma = params_.angleSigmaDeg * std::numbers::pi / 180;
   solver_.minSamplesPerCamera = params_.minSamplesPerCamera;
   solver_.maxRmsAngleDeg = params_.maxRmsAngleDeg;
   solver_.maxRmsDepthM = params_.maxRmsDepthM;

@@ -34,6 +34,10 @@ class Calibrator : public Module<Calibrator,
     int minSamplesPerCamera = 3;
     double maxRmsAngleDeg = 0.15;  // acceptance of a solution (perception/calibration/Calibrator.h)
     double maxRmsDepthM = 0.012;
+    // The residuals' expected errors (perception/calibration/CalibrationCost.h): the goal box's
+    // depth (the camera height the legs give, and the paint) and each right angle.
+    double depthSigmaM = 0.002;
+    double angleSigmaDeg = 0.02;
     std::string solver = "gauss-newton";  // or "ceres" (not in nao-soccer-robot)
     // The image's line segments: "lsd" (OpenCV's LSD), "vision" first, or "lsd+vision" (LSD, then
     // the vision's lines, then both: perception/calibration/SampleExtraction.h). lsd+vision: the
@@ -72,6 +76,8 @@ void describe(V& v, modules::Calibrator::Params& p) {
   v("minSamplesPerCamera", p.minSamplesPerCamera, 2, 100);
   v("maxRmsAngleDeg", p.maxRmsAngleDeg, 0.001, 10.0);
   v("maxRmsDepthM", p.maxRmsDepthM, 0.0001, 1.0);
+  v("depthSigmaM", p.depthSigmaM, 0.0001, 0.1);
+  v("angleSigmaDeg", p.angleSigmaDeg, 0.001, 5.0);
   v("solver", p.solver, {"gauss-newton", "ceres"});
   v("lines", p.lines, {"lsd", "vision", "lsd+vision"});
   v("compareSolvers", p.compareSolvers);
