@@ -3,6 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
+  mold                   # the linker: about four times faster than GNU ld (cmake/Linker.cmake)
   libmujoco-dev          # MuJoCo 2.2.2: physics
   libosmesa6-dev         # off-screen software OpenGL for the simulated cameras
   libegl-dev libegl-mesa0  # --gl egl: EGL headers, Mesa's EGL (a GPU's or its software device)

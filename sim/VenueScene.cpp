@@ -25,6 +25,8 @@ constexpr int kTurfTexels = 2048;    // along the carpet's length: about 5 mm pe
 constexpr int kPaintTexels = 256;    // per metre of paint (the texture repeats every metre)
 constexpr double kTurfBase = 0.82;   // the texture's mean: room above it for the brighter patches
 constexpr double kPieceLength = 0.5;  // m: a stroke's pieces
+constexpr double kBendKnot = 3.0;     // m between the drift's values
+constexpr double kBendTaper = 1.5;    // m over which a stroke's ends ease into the drift
 
 double uniform(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
 double uniform(std::mt19937_64& g, double lo, double hi) { return lo + (hi - lo) * uniform(g); }
@@ -268,12 +270,19 @@ void stroke(const PaintFn& paint, const std::string& name, const Eigen::Vector2d
   const double length = (to - from).norm();
   const Eigen::Vector2d dir = (to - from) / length, normal(-dir.y(), dir.x());
   const int n = std::max(1, static_cast<int>(std::lround(length / kPieceLength)));
-  // The sideways drift: a smooth curve through a value every metre, zero at both ends (where
-  // the stroke meets other lines).
+  // The sideways drift: a slow wave (a value every kBendKnot m) that leaves both ends straight
+  // and on the true line (where the stroke meets other lines, drawn with a square), easing in
+  // over kBendTaper m. Its slope is at most 1.7 lineBend per metre from the wave plus 1 from the
+  // easing: a line drawn along a string or tape drifts by millimetres over metres; it does not
+  // kink by a degree next to a corner.
   const ValueNoise drift{rng()};
+  auto ease = [](double u) {
+    u = std::clamp(u, 0.0, 1.0);
+    return u * u * (3 - 2 * u);
+  };
   auto offset = [&](double s) {
-    const double taper = std::min({1.0, s / 0.5, (length - s) / 0.5});
-    return look.lineBend * std::clamp(drift.at(s, 0.5), -1.0, 1.0) * std::max(taper, 0.0);
+    const double taper = ease(s / kBendTaper) * ease((length - s) / kBendTaper);
+    return look.lineBend * std::clamp(drift.at(s / kBendKnot, 0.5), -1.0, 1.0) * taper;
   };
   for (int k = 0; k < n; ++k) {
     const double s0 = length * k / n, s1 = length * (k + 1) / n;

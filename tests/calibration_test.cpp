@@ -14,6 +14,7 @@
 
 #include "controllers/StandController.h"
 #include "perception/calibration/CalibrationStore.h"
+#include "perception/calibration/GoalBoxFinder.h"
 #include "perception/calibration/Calibrator.h"
 #include "perception/calibration/SampleExtraction.h"
 #include "perception/calibration/SyntheticSamples.h"
@@ -328,6 +329,23 @@ TEST(CalibrationImages, RejectsWithAReason) {
   EXPECT_FALSE(occluded.sample);
   EXPECT_NE(occluded.reason.find("occluded"), std::string::npos) << occluded.reason;
   for (const auto* r : {&none, &deep, &skewed, &occluded}) std::printf("rejected: %s\n", r->reason.c_str());
+}
+
+// The vision's and LSD's lines stop short of the goal box's L corner (the junction's paint and
+// worn spots break them): a long line seen from 25 px beyond the corner still joins the short
+// line; one seen only from 80 px beyond (another line's piece) does not.
+TEST(GoalBoxFinder, JoinsALongLineThatStopsShortOfTheCorner) {
+  auto segments = [](double gapPx) {
+    const Eigen::Vector2d left(200, 300), right(440, 310);
+    const Eigen::Vector2d upRight = Eigen::Vector2d(30, -160).normalized();
+    return std::vector<ImageSegment>{{left, right, 8},                                     // the short line
+                                      {{120, 420}, {260, 200}, 8},                          // the goal line
+                                      {right + gapPx * upRight, right + 200 * upRight, 8}};  // the front line
+  };
+  const GoalBoxSideDetection near = findGoalBoxSide(segments(25), 640, 480);
+  ASSERT_TRUE(near.found) << near.reason;
+  EXPECT_LT((near.junction2 - Eigen::Vector2d(440, 310)).norm(), 1.0);
+  EXPECT_FALSE(findGoalBoxSide(segments(80), 640, 480).found);
 }
 
 // ---- The store ----
