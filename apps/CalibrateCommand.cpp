@@ -290,6 +290,7 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   o.venue = venueFrom(options.venue);
   o.randomize = options.randomize;
   o.solver = cal::parseSolver(options.solver);
+  o.imagesDir = options.images;
   nlohmann::json lightings = nlohmann::json::array();
   for (const sim::Lighting& l : o.lightings) lightings.push_back(l.name);
   // What a row was drawn from: rows of other settings are refused.

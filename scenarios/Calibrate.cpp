@@ -356,6 +356,7 @@ CalibrationTrial runCalibrationTrial(const CalibrationEvalOptions& o, std::uint6
   run.timeLimit = o.timeLimit;
   run.venue = o.venue.forSeed(seed);
   run.randomize = o.randomize;
+  if (!o.imagesDir.empty()) run.imagesDir = o.imagesDir + "/seed_" + std::to_string(seed);
 
   CalibrationTrial trial;
   trial.lighting = run.lighting.name;

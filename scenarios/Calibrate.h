@@ -131,6 +131,7 @@ struct CalibrationEvalOptions {
   double timeLimit = 600;                 // s of each trial's phase
   VenueChoice venue;                      // the look of trial seed s: venue.forSeed(s)
   bool randomize = false;                 // foreign robots (ChallengeSetup::randomize)
+  std::string imagesDir;                  // non-empty: trial seed s writes its views into imagesDir/seed_s
   std::function<void(int done, int total)> progress;
 };
 

@@ -278,10 +278,18 @@ TEST(EvalCalibration, RowsResumeAndEachTrialIsItsSeeds) {
   EXPECT_EQ(test::withoutTimes(readJson((dir / "b.json").string())), test::withoutTimes(a));
   const std::string resumed = fileText(rows);
   EXPECT_EQ(resumed.substr(0, text.find('\n')), text.substr(0, text.find('\n'))) << "the first trial ran again";
-  // Seed 2 alone is the second trial.
+  // Seed 2 alone is the second trial; writing its pictures (--images: into DIR/seed_2/) changes
+  // nothing else.
+  const auto images = dir / "images";
   ASSERT_EQ(runCommand("eval calibration --seed 2 --trials 1 --time-limit 2 --lighting default --json " +
-                       (dir / "c.json").string()).code, 0);
-  EXPECT_EQ(test::withoutTimes(readJson((dir / "c.json").string())["per_trial"][0]), test::withoutTimes(a["per_trial"][1]));
+                       (dir / "c.json").string() + " --images " + images.string()).code, 0);
+  nlohmann::json c = readJson((dir / "c.json").string())["per_trial"][0];
+  EXPECT_TRUE(std::filesystem::is_directory(images / "seed_2"));
+  for (const auto& f : c["files"]) EXPECT_TRUE(std::filesystem::exists(f.get<std::string>())) << f;
+  c.erase("files");
+  nlohmann::json second = a["per_trial"][1];
+  second.erase("files");
+  EXPECT_EQ(test::withoutTimes(c), test::withoutTimes(second));
   // Other settings: refused, nothing run.
   const CommandResult other = runCommand("eval calibration --trials 2 --time-limit 3 --lighting default --rows " + rows);
   EXPECT_EQ(other.code, 2) << other.out;

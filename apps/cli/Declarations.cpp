@@ -415,6 +415,9 @@ void CommandLine::declare() {
             venueProblem);
     ck.outputFile("--rows", k.rows, "one JSON line per trial, appended as it ends; seeds already in FILE are not run again");
     seedsOption(ck, k.seeds, "--trials");
+    ck.outputFolder("--images", k.images,
+                    "write each trial's views (annotated and as the robot saw them) and its before/after pictures "
+                    "into DIR/seed_S/ (S: the trial's seed)");
 
     const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
     ck.flag("--randomize", k.randomize, randomize + " (the head's aside)");

@@ -120,6 +120,7 @@ struct EvalCalibrationOptions {
   CommonOptions common;
   std::string lighting = "sweep", solver = "gauss-newton", rows;
   std::string venue = "random";
+  std::string images;  // --images DIR: each trial's views in DIR/seed_S/
   bool randomize = false;
   int trials = 100;
   double maxOffset = 3, timeLimit = 600;
