@@ -42,8 +42,11 @@ std::uint64_t mix(std::uint64_t x) {  // splitmix64's finaliser
   return x ^ (x >> 31);
 }
 
+double smoothstep(double t) { return t * t * (3 - 2 * t); }  // 0..1 -> 0..1, flat at both ends
+
 // Smooth value noise: lattice values uniform in +-sqrt(3) (sd 1), blended with smoothstep
 // weights (the blend's sd is about 0.6). x, y in lattice units.
+
 struct ValueNoise {
   std::uint64_t salt;
   double lattice(long i, long j) const {
@@ -54,8 +57,7 @@ struct ValueNoise {
   double at(double x, double y) const {
     const double fx = std::floor(x), fy = std::floor(y);
     const long i = static_cast<long>(fx), j = static_cast<long>(fy);
-    auto smooth = [](double t) { return t * t * (3 - 2 * t); };
-    const double tx = smooth(x - fx), ty = smooth(y - fy);
+    const double tx = smoothstep(x - fx), ty = smoothstep(y - fy);
     const double a = lattice(i, j) + (lattice(i + 1, j) - lattice(i, j)) * tx;
     const double b = lattice(i, j + 1) + (lattice(i + 1, j + 1) - lattice(i, j + 1)) * tx;
     return a + (b - a) * ty;
@@ -276,10 +278,7 @@ void stroke(const PaintFn& paint, const std::string& name, const Eigen::Vector2d
   // easing: a line drawn along a string or tape drifts by millimetres over metres; it does not
   // kink by a degree next to a corner.
   const ValueNoise drift{rng()};
-  auto ease = [](double u) {
-    u = std::clamp(u, 0.0, 1.0);
-    return u * u * (3 - 2 * u);
-  };
+  auto ease = [](double u) { return smoothstep(std::clamp(u, 0.0, 1.0)); };
   auto offset = [&](double s) {
     const double taper = ease(s / kBendTaper) * ease((length - s) / kBendTaper);
     return look.lineBend * std::clamp(drift.at(s / kBendKnot, 0.5), -1.0, 1.0) * taper;

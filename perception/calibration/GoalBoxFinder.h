@@ -47,7 +47,7 @@ struct FinderOptions {
   double minShortLengthPx = 25;
   double minAngleDeg = 15;         // between the short line and a long one, in the image
   // Beyond the lines' half widths: the vision's and LSD's lines stop short of an L corner (its
-  // junction, worn paint); chosen on the real goal-box frames (docs/calibration/README.md).
+  // junction, worn paint); chosen on the real goal-box frames (docs/vision/real/README.md).
   double junctionSlackPx = 30;
   double minRunOnPx = 20;          // each long line runs at least this far beyond the short line
   double borderPx = 3;             // a short line touching the border is cut off: not a find
