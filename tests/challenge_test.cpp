@@ -133,6 +133,41 @@ TEST(ChallengeTasks, WalksGoRoundKnownBallsInsideTheField) {
   EXPECT_LT(behavior::ChallengeTasks::detour(Eigen::Vector2d(-4, 0), Eigen::Vector2d(4, 0), balls, field, p).x(), 0);
 }
 
+// The walk to the own goal's centre from near the corner (seed 56 of the challenge rows: the
+// straight way passed the right post 0.19 m off, the robot brushed it and fell against it). Every
+// leg of the walk, waypoint after waypoint as the behaviour walks them, keeps postClearance
+// from all four posts, and the walk ends at the goal centre.
+TEST(ChallengeTasks, WalksGoRoundTheGoalPosts) {
+  const FieldDimensions field = standardField();
+  const behavior::ChallengeTasks::Params p;
+  const FieldBalls noBalls;
+  const double postY = field.goalInnerWidth / 2 + field.goalPostDiameter / 2;
+  std::vector<Eigen::Vector2d> posts;
+  for (const double x : {-field.length / 2, field.length / 2})
+    for (const double y : {-postY, postY}) posts.emplace_back(x, y);
+  const Eigen::Vector2d goalCentre(-field.length / 2, 0);
+  for (const Eigen::Vector2d& start : {Eigen::Vector2d(-3.84, -2.68), Eigen::Vector2d(-4.1, 2.9), Eigen::Vector2d(-4.2, -1.2),
+                                      Eigen::Vector2d(-2, 0.5), Eigen::Vector2d(3.9, 2.5)}) {
+    const Eigen::Vector2d to = start.x() < 0 ? goalCentre : -goalCentre;
+    SCOPED_TRACE(::testing::Message() << "from " << start.transpose());
+    Eigen::Vector2d here = start, obstacle;
+    std::vector<Eigen::Vector2d> passed;
+    int legs = 0;
+    while (here != to && legs < 5) {
+      const Eigen::Vector2d next = behavior::ChallengeTasks::detour(here, to, noBalls, field, p, passed, &obstacle);
+      for (const Eigen::Vector2d& post : posts)
+        EXPECT_GE(segmentDistance(post, here, next), p.postClearance - 1e-9) << "leg " << legs << " to " << next.transpose();
+      if (next != to) passed.push_back(obstacle);
+      here = next;
+      ++legs;
+    }
+    EXPECT_EQ(here, to);
+  }
+  EXPECT_LT(segmentDistance(posts[0], Eigen::Vector2d(-3.84, -2.68), goalCentre), 0.2) << "the case needs a detour";
+  // A way in front of the goal passes the posts without one.
+  EXPECT_EQ(behavior::ChallengeTasks::detour(Eigen::Vector2d(0, 0), goalCentre, noBalls, field, p), goalCentre);
+}
+
 // Phase 1's first decision: which side line the robot starts on. The own goal box seen to the
 // right means the left side line, whatever the (uncalibrated) localization believes; without a
 // sighting the localization decides after sideTimeout.

@@ -50,26 +50,39 @@ Pose2 ChallengeTasks::spot(Task task) const {
 
 Eigen::Vector2d ChallengeTasks::detour(const Eigen::Vector2d& from, const Eigen::Vector2d& to, const FieldBalls& balls,
                                        const FieldDimensions& field, const Params& p,
-                                       const std::vector<Eigen::Vector2d>& passed, Eigen::Vector2d* ball) {
+                                       const std::vector<Eigen::Vector2d>& passed, Eigen::Vector2d* obstacle) {
+  // The obstacles: the balls it knows (the rules end the run at a touched ball) and the four
+  // goal posts, where the field says they stand (a robot that brushes a post falls, and lying
+  // against it cannot get up: seed 56 of the challenge rows).
+  struct Obstacle {
+    Eigen::Vector2d position;
+    double clearance;
+  };
+  std::vector<Obstacle> obstacles;
+  for (const FieldBalls::Ball* b : {&balls.own, &balls.opponent})
+    if (b->seen) obstacles.push_back({b->position, p.ballClearance});
+  const double postY = field.goalInnerWidth / 2 + field.goalPostDiameter / 2;
+  for (const double x : {-field.length / 2, field.length / 2})
+    for (const double y : {-postY, postY}) obstacles.push_back({Eigen::Vector2d(x, y), p.postClearance});
+
   const Eigen::Vector2d seg = to - from;
   const double len2 = seg.squaredNorm();
   std::optional<Eigen::Vector2d> first;
   double firstAlong = 2;
   Eigen::Vector2d firstClosest = Eigen::Vector2d::Zero();
-  for (const FieldBalls::Ball* b : {&balls.own, &balls.opponent}) {
-    if (!b->seen) continue;
-    if (std::any_of(passed.begin(), passed.end(), [&](const Eigen::Vector2d& q) { return (q - b->position).norm() < 0.3; }))
+  for (const Obstacle& o : obstacles) {
+    if (std::any_of(passed.begin(), passed.end(), [&](const Eigen::Vector2d& q) { return (q - o.position).norm() < 0.3; }))
       continue;
-    const double along = len2 > 1e-9 ? std::clamp((b->position - from).dot(seg) / len2, 0.0, 1.0) : 0.0;
+    const double along = len2 > 1e-9 ? std::clamp((o.position - from).dot(seg) / len2, 0.0, 1.0) : 0.0;
     const Eigen::Vector2d closest = from + along * seg;
-    if ((closest - b->position).norm() >= p.ballClearance || along >= firstAlong) continue;
-    first = b->position;
+    if ((closest - o.position).norm() >= o.clearance || along >= firstAlong) continue;
+    first = o.position;
     firstAlong = along;
     firstClosest = closest;
   }
   if (!first) return to;
-  if (ball) *ball = *first;
-  // Beside the ball on the side the straight way passes, unless that leaves the field.
+  if (obstacle) *obstacle = *first;
+  // Beside the obstacle on the side the straight way passes, unless that leaves the field.
   Eigen::Vector2d side = firstClosest - *first;
   if (side.norm() < 1e-6) side = Eigen::Vector2d(-seg.y(), seg.x());
   side.normalize();
@@ -85,11 +98,11 @@ Eigen::Vector2d ChallengeTasks::detour(const Eigen::Vector2d& from, const Eigen:
 bool ChallengeTasks::walkTo(const BehaviorInput& in, const Pose2& target, const FieldBalls& balls, Output& out) {
   const Eigen::Vector2d here(in.pose.pose.x, in.pose.pose.y), there(target.x, target.y);
   if (waypoint_ && (here - *waypoint_).norm() < params_.waypointReached) {
-    passed_.push_back(waypointBall_);
+    passed_.push_back(waypointObstacle_);
     waypoint_.reset();
   }
   if (!waypoint_ && in.pose.valid) {
-    const Eigen::Vector2d next = detour(here, there, balls, field_, params_, passed_, &waypointBall_);
+    const Eigen::Vector2d next = detour(here, there, balls, field_, params_, passed_, &waypointObstacle_);
     if ((next - there).norm() > 1e-6) {
       waypoint_ = next;
       ++summary_.detours;

@@ -7,7 +7,7 @@
 // task walks to its spot (own goal centre, centre spot, opponent goal centre) facing the
 // field, stands, averages its own estimate and steps again while that is more than
 // verifyTolerance off, then says "Finished walking". Every walk goes round the balls it knows
-// (the rules end the run at a touched ball) and keeps inside the field.
+// (the rules end the run at a touched ball) and the goal posts, and keeps inside the field.
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,7 +39,8 @@ class ChallengeTasks {
     double sweepPitch = 0.15;        // rad ...
     double sweepSpeed = 0.6;         // rad/s
     double ballClearance = 0.45;     // m: a walk passing a known ball nearer than this goes round it
-    double detourClearance = 0.7;    // m: the detour's waypoint from the ball
+    double postClearance = 0.4;      // m: ... or a goal post nearer than this (its radius, half a robot's width with arms, walking error)
+    double detourClearance = 0.7;    // m: the detour's waypoint from the ball or post
     double waypointReached = 0.25;   // m: a detour waypoint counts as passed this near
     double fieldMargin = 0.3;        // m inside the side lines for waypoints and search poses
     double verifyTime = 1.5;         // s standing on a spot, averaging the estimate
@@ -78,11 +79,12 @@ class ChallengeTasks {
   // The walk task's spot (field pose, facing the field).
   Pose2 spot(Task task) const;
   // Where to walk next on the way from `from` to `to`: `to` itself, or a waypoint beside a ball
-  // the straight way would pass nearer than ballClearance (the nearest such ball first). Balls
-  // near one of `passed` (already gone round on this walk) do not count again.
+  // the straight way would pass nearer than ballClearance or a goal post it would pass nearer
+  // than postClearance (the first such obstacle on the way). Obstacles near one of `passed`
+  // (already gone round on this walk) do not count again; `obstacle` gets the one gone round.
   static Eigen::Vector2d detour(const Eigen::Vector2d& from, const Eigen::Vector2d& to, const FieldBalls& balls,
                                 const FieldDimensions& field, const Params& params,
-                                const std::vector<Eigen::Vector2d>& passed = {}, Eigen::Vector2d* ball = nullptr);
+                                const std::vector<Eigen::Vector2d>& passed = {}, Eigen::Vector2d* obstacle = nullptr);
 
  private:
   void startTask(const BehaviorInput& in);
@@ -96,7 +98,7 @@ class ChallengeTasks {
   int task_ = 0;
   GoToPose goTo_;
   std::optional<Eigen::Vector2d> waypoint_;  // the detour being walked to ...
-  Eigen::Vector2d waypointBall_ = Eigen::Vector2d::Zero();  // ... round this ball
+  Eigen::Vector2d waypointObstacle_ = Eigen::Vector2d::Zero();  // ... round this ball or post
   std::vector<Eigen::Vector2d> passed_;      // the balls gone round on this walk
   Pose2 approach_;                           // the observation pose
   Eigen::Vector2d approachBall_ = Eigen::Vector2d::Zero();  // the ball estimate it was planned for
@@ -123,6 +125,7 @@ void describe(V& v, ChallengeTasks::Params& p) {
   v("sweepPitch", p.sweepPitch, -0.6, 0.5);
   v("sweepSpeed", p.sweepSpeed, 0.05, 3.0);
   v("ballClearance", p.ballClearance, 0.0, 3.0);
+  v("postClearance", p.postClearance, 0.0, 3.0);
   v("detourClearance", p.detourClearance, 0.0, 3.0);
   v("waypointReached", p.waypointReached, 0.01, 3.0);
   v("fieldMargin", p.fieldMargin, 0.0, 2.0);
