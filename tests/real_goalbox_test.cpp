@@ -301,8 +301,10 @@ TEST(EvalReal, ScoresEveryFrameAgainstItsLabels) {
   EXPECT_EQ(s["labelled_lines_imprecise"], imprecise);
   EXPECT_EQ(s["other_lines"], other);
   EXPECT_EQ(other, 0) << "an accepted sample on lines that are not the goal box's";
-  // 24 of 39 measured (docs/vision/real/README.md); a vision change may move a frame or two.
+  // 24 of 39 measured, 15 of them within 3 px / 2 deg of the labels (docs/vision/real/README.md);
+  // a vision change may move a frame or two.
   EXPECT_GE(accepted, 22);
+  EXPECT_GE(right, 14);
   EXPECT_GE(j["labels"]["border_line"]["vision_rate"].get<double>(), 0.9);
   EXPECT_GT(pictures, 0);
 }

@@ -50,6 +50,7 @@ struct EdgeFit {
   int points = 0;
   double rms = 0;
   double coverage = 0;
+  double span = 0;  // the inliers' extent along the scan axis, of the scanned stretch's
 };
 
 // Does the edge at p, brighter towards nb, separate grass (its darker side) from paint?
@@ -65,15 +66,18 @@ bool grassToPaint(const GradientImage& g, const Eigen::Vector2d& p, const Eigen:
   return at(p - o.colourOffsetPx * nb) - at(p + inside * nb) >= o.minGreennessStep;
 }
 
-// Total least squares through points (the principal axis).
-void fitLine(const std::vector<Eigen::Vector2d>& pts, Eigen::Vector2d& mean, Eigen::Vector2d& dir) {
+// Weighted total least squares through points (the principal axis).
+void fitLine(const std::vector<Eigen::Vector2d>& pts, const std::vector<double>& w, Eigen::Vector2d& mean,
+             Eigen::Vector2d& dir) {
   mean.setZero();
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
+  double sum = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) mean += w[i] * pts[i], sum += w[i];
+  mean /= sum;
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
+  for (std::size_t i = 0; i < pts.size(); ++i) cov += w[i] * (pts[i] - mean) * (pts[i] - mean).transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-  dir = es.eigenvectors().col(1);
+  const Eigen::Vector2d d = es.eigenvectors().col(1);
+  dir = d.dot(dir) < 0 ? Eigen::Vector2d(-d) : d;  // keep the orientation: the sides stay the sides
 }
 
 // Sub-pixel points of one edge near the Hough line {p : (p - a) . ne = rho}, polarity sign
@@ -93,6 +97,7 @@ EdgeFit fitEdge(const GradientImage& g, const Stretch& st, const Eigen::Vector2d
   std::vector<Eigen::Vector2d> pts;
   std::vector<double> strength;
   int scanned = 0;
+  double scannedLo = 1e30, scannedHi = -1e30;
   const int border = static_cast<int>(std::ceil(o.borderPx));
   for (int k = static_cast<int>(std::floor(lo)); k <= static_cast<int>(std::ceil(hi)); ++k) {
     const double c = k + 0.5;  // pixel centre coordinate along the scan axis
@@ -105,6 +110,8 @@ EdgeFit fitEdge(const GradientImage& g, const Stretch& st, const Eigen::Vector2d
     const int limit = byColumn ? h : w;
     if (k < border || k >= (byColumn ? w : h) - border || j0 - 3 < border || j0 + 3 >= limit - border) continue;
     ++scanned;
+    scannedLo = std::min(scannedLo, c);
+    scannedHi = std::max(scannedHi, c);
     int best = j0;
     double bestV = -1e30;
     for (int j = j0 - 2; j <= j0 + 2; ++j) {
@@ -145,12 +152,36 @@ EdgeFit fitEdge(const GradientImage& g, const Stretch& st, const Eigen::Vector2d
     for (std::size_t i = 0; i < kept.size(); ++i)
       if (res[i] <= gate) inliers.push_back(kept[i]);
     if (static_cast<int>(inliers.size()) < o.minPoints) return fit;
-    fitLine(inliers, mean, dir);
+    fitLine(inliers, std::vector<double>(inliers.size(), 1.0), mean, dir);
   }
-  const Eigen::Vector2d nn(-dir.y(), dir.x());
-  double sum2 = 0, tMin = 1e30, tMax = -1e30;
+  Eigen::Vector2d nn(-dir.y(), dir.x());
+  double sum2 = 0, kMin = 1e30, kMax = -1e30;
   for (const auto& q : inliers) {
+    const double k = byColumn ? q.x() : q.y();
+    kMin = std::min(kMin, k);
+    kMax = std::max(kMax, k);
     sum2 += std::pow((q - mean).dot(nn), 2);
+  }
+  // Wear only takes paint away, so of the inliers one that lies into the paint from the line is
+  // more likely worn than one out of it: the final line counts the former paintSideWeight and
+  // the latter 1 - paintSideWeight (an expectile, not the mean: it leans to the intact paint's
+  // edge). Both edges lean outwards alike, so the line's centre stays; the inliers, their
+  // scatter and coverage are the plain fit's.
+  if (o.paintSideWeight != 0.5) {
+    std::vector<double> weights(inliers.size());
+    for (int round = 0; round < 20; ++round) {
+      const double toPaint = nn.dot(sign * ne) > 0 ? 1 : -1;  // residuals > 0: into the paint
+      for (std::size_t i = 0; i < inliers.size(); ++i)
+        weights[i] = toPaint * (inliers[i] - mean).dot(nn) > 0 ? o.paintSideWeight : 1 - o.paintSideWeight;
+      const Eigen::Vector2d lastMean = mean, lastDir = dir;
+      fitLine(inliers, weights, mean, dir);
+      nn = Eigen::Vector2d(-dir.y(), dir.x());
+      if (std::abs((mean - lastMean).dot(nn)) < 1e-4 && std::abs(dir.x() * lastDir.y() - dir.y() * lastDir.x()) < 1e-7)
+        break;
+    }
+  }
+  double tMin = 1e30, tMax = -1e30;
+  for (const auto& q : inliers) {
     const double t = (q - mean).dot(dir);
     tMin = std::min(tMin, t);
     tMax = std::max(tMax, t);
@@ -163,6 +194,7 @@ EdgeFit fitEdge(const GradientImage& g, const Stretch& st, const Eigen::Vector2d
   fit.segment = {mean + tMin * dir, mean + tMax * dir};
   // Coverage in scanned columns (rows): a steep stretch has fewer of them than its length.
   fit.coverage = static_cast<double>(inliers.size()) / scanned;
+  fit.span = scannedHi > scannedLo ? (kMax - kMin) / (scannedHi - scannedLo) : 0.0;
   return fit;
 }
 
@@ -310,7 +342,9 @@ RefinedLine refineLine(const GradientImage& g, const ImageSegment& coarse, const
     return out;
   }
   out.coverage = std::min(fits[0].coverage, fits[1].coverage);
-  if (out.coverage < o.minCoverage) {
+  out.span = std::min(fits[0].span, fits[1].span);
+  const bool spanned = out.span >= o.minSpan && out.coverage >= o.minCoverageSpanned;
+  if (out.coverage < o.minCoverage && !spanned) {
     out.reason = "edges found along only " + std::to_string(static_cast<int>(std::lround(100 * out.coverage))) +
                  "% of it (occluded?)";
     return out;

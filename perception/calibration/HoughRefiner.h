@@ -11,7 +11,8 @@
 //   3. Sub-pixel edge points: along each image column (row, for steep lines) the gradient
 //      across the edge peaks at the edge; a parabola through the peak and its two neighbours
 //      places it to a fraction of a pixel. A total-least-squares line through the points near
-//      the Hough line (outliers dropped) is the refined edge. This is where sub-pixel pays: the
+//      the Hough line (outliers dropped; leaning to the intact paint, since wear only takes paint
+//      away) is the refined edge. This is where sub-pixel pays: the
 //      rendered edges are aliased steps, and hundreds of points average their jags away.
 // Stretches near junctions (where other lines' paint interrupts the edges) and near the image
 // border are left out; too few edge points along the rest means the line is occluded.
@@ -46,7 +47,10 @@ struct HoughRefinerOptions {
   double bandMarginPx = 4;        // beyond the coarse paint edges
   double borderPx = 3;            // image border left out
   double maxResidualPx = 0.6;     // edge points farther from the fitted edge are outliers
-  double minCoverage = 0.6;       // of the usable stretch with edge points, per edge
+  double paintSideWeight = 0.1;   // an edge point into the paint from the fit counts this, one out of it 1 - this (worn paint)
+  double minCoverage = 0.6;       // of the usable stretch with edge points, per edge ...
+  double minCoverageSpanned = 1;  // ... or this much where the edge points reach both ends (a worn
+  double minSpan = 0.85;          //     stretch between them): span of the scanned stretch, per edge
   int minPoints = 12;             // per edge
   double minStrengthRatio = 0.3;  // an edge point's gradient vs the median along the edge
   double minGreennessStep = 0.15;  // grass side minus paint side
@@ -71,6 +75,7 @@ struct RefinedLine {
   std::string reason;           // why not
   LineMeasurement measurement;  // edgeA: the edge on the coarse line's left normal side
   double coverage = 0;          // the lower of the two edges'
+  double span = 0;              // the lower of the two edges': the edge points' extent along the stretch
 };
 
 RefinedLine refineLine(const GradientImage& gradients, const ImageSegment& coarse,

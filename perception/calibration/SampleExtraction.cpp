@@ -71,10 +71,13 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
   const std::vector<Exclusion> shortExcl = {{det.junction1, (w1 / 2 + ws) / s1 + m}, {det.junction2, (w2 / 2 + ws) / s2 + m}};
   const std::vector<Exclusion> long1Excl = {{det.junction1, (ws / 2 + w1) / s1 + m}};
   const std::vector<Exclusion> long2Excl = {{det.junction2, (ws / 2 + w2) / s2 + m}};
-  // The short line defines the junctions: it must be seen whole. A long line may be partly
-  // hidden (a goal post) as long as a good stretch of it is measured.
+  // The short line defines the junctions: it must be seen whole, from end to end; a worn
+  // stretch between its ends may break the paint (hall-d's side line: 42-53 % coverage with
+  // a 15 cm gap mid-line). A long line may be partly hidden (a goal post) as long as a good
+  // stretch of it is measured.
   HoughRefinerOptions shortOpts = o.hough, longOpts = o.hough;
   shortOpts.minCoverage = std::max(o.hough.minCoverage, 0.7);
+  shortOpts.minCoverageSpanned = std::min(shortOpts.minCoverageSpanned, 0.4);
   longOpts.minCoverage = std::min(o.hough.minCoverage, 0.4);
   const RefinedLine refined[3] = {refineLine(gradients, det.shortLine, shortExcl, shortOpts),
                                   refineLine(gradients, det.longLine1, long1Excl, longOpts),

@@ -10,7 +10,11 @@ std::optional<CalibrationSample> synthesizeSample(const SyntheticScene& scene, c
   const double hw = scene.lineWidth / 2;
   const Eigen::Vector2d along = (s.lCorner - s.tJunction).normalized();
   const Eigen::Vector2d acrossShort(-along.y(), along.x());
-  const Eigen::Vector2d acrossLong(-s.inward.y(), s.inward.x());
+  auto turned = [](const Eigen::Vector2d& d, double a) {
+    return Eigen::Vector2d(std::cos(a) * d.x() - std::sin(a) * d.y(), std::sin(a) * d.x() + std::cos(a) * d.y());
+  };
+  const Eigen::Vector2d inward1 = turned(s.inward, scene.longLine1Turn), inward2 = turned(s.inward, scene.longLine2Turn);
+  const Eigen::Vector2d across1(-inward1.y(), inward1.x()), across2(-inward2.y(), inward2.x());
   const double shortLength = (s.lCorner - s.tJunction).norm();
 
   CalibrationSample sample;
@@ -35,9 +39,9 @@ std::optional<CalibrationSample> synthesizeSample(const SyntheticScene& scene, c
   const double margin = 2 * scene.lineWidth;
   if (!measure(s.tJunction + margin * along, s.tJunction + (shortLength - margin) * along, acrossShort,
                sample.lines[ShortLine]) ||
-      !measure(s.tJunction + margin * s.inward, s.tJunction + scene.longLength * s.inward, acrossLong,
+      !measure(s.tJunction + margin * inward1, s.tJunction + scene.longLength * inward1, across1,
                sample.lines[LongLine1]) ||
-      !measure(s.lCorner + margin * s.inward, s.lCorner + scene.longLength * s.inward, acrossLong,
+      !measure(s.lCorner + margin * inward2, s.lCorner + scene.longLength * inward2, across2,
                sample.lines[LongLine2]))
     return std::nullopt;
   return sample;

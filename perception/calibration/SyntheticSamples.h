@@ -14,6 +14,8 @@ struct SyntheticScene {
   GoalBoxSide side;
   double lineWidth = 0.05;     // m
   double longLength = 0.8;     // m of each long line used, from the short line inwards
+  // Paint off the true geometry: each long line turned about its junction (rad, counterclockwise).
+  double longLine1Turn = 0, longLine2Turn = 0;
   Eigen::Vector3d robotPose = Eigen::Vector3d::Zero();  // true (x, y, theta)
   Eigen::Vector2d imuAngle = Eigen::Vector2d::Zero();   // true torso roll, pitch
 };
