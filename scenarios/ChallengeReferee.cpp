@@ -16,6 +16,14 @@ bool ChallengeReferee::leftField(const World& world, int robot) {
   return true;
 }
 
+bool ChallengeReferee::armRaised(const World& world, int robot) const {
+  const Eigen::Isometry3d torso = world.torsoPose(robot);
+  const double tilt = std::acos(std::clamp(torso.linear()(2, 2), -1.0, 1.0)) * 180 / M_PI;
+  if (tilt > params_.upTilt) return false;
+  const double headZ = world.cameraPose(robot, CameraId::Top).translation().z();
+  return world.handPosition(robot, false).z() > headZ || world.handPosition(robot, true).z() > headZ;
+}
+
 const std::string& ChallengeReferee::check(World& world, int robot, std::vector<ChallengeEvent>& events) {
   if (!terminated_.empty()) return terminated_;
   const double t = world.time();

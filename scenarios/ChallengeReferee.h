@@ -40,6 +40,10 @@ class ChallengeReferee {
   int falls() const { return falls_; }
   // Whether every sole corner lies beyond the outer edge of the boundary lines.
   static bool leftField(const World& world, int robot);
+  // Whether the robot shows a raised arm as the referee reads it: standing (torso within
+  // upTilt of upright) with a hand above the head. A robot on the ground waving its arms while it
+  // gets up raises none.
+  bool armRaised(const World& world, int robot) const;
 
  private:
   Params params_;

@@ -104,9 +104,9 @@ void ChallengeSession::cycle() {
   pathLength_ += step;
   referee_.check(*world_, 0, events_);
 
-  // What the robot says, and whether its arm is up then (a hand above the head, in truth).
-  const double headZ = world_->cameraPose(0, CameraId::Top).translation().z();
-  const bool armUp = world_->handPosition(0, false).z() > headZ || world_->handPosition(0, true).z() > headZ;
+  // What the robot says, and whether its arm is up then (standing, a hand above the head, in
+  // truth).
+  const bool armUp = referee_.armRaised(*world_, 0);
   if (armUp != armWasUp_) note("arm", armUp ? "up" : "down");
   armWasUp_ = armUp;
   const SpeechRequest& speech = program_->blackboard().read<SpeechRequest>();

@@ -393,6 +393,28 @@ TEST(ChallengeReferee, LeavingTheFieldIsBothSolesBeyondTheLine) {
   }
 }
 
+// The report's arm: a standing robot with a hand above its head. A robot on the ground is not
+// reporting, wherever its hands are (seed 56's get-up tries were logged as arm raises).
+TEST(ChallengeReferee, AnArmIsRaisedOnlyByAStandingRobot) {
+  const Eigen::Vector3d pose(0, 0, 0);
+  RefereeWorld r(pose);
+  EXPECT_FALSE(r.referee.armRaised(r.world, 0)) << "standing, arms down";
+  JointArray up = StandController::standPosture();
+  up[RShoulderPitch] = -1.5;  // the right arm up in front
+  r.world.placeRobot(0, pose, up);
+  EXPECT_TRUE(r.referee.armRaised(r.world, 0));
+  // The same hand above the head, but the torso further from upright than the referee's
+  // "standing" (here: a referee for whom nothing stands): no arm raised.
+  sim::ChallengeReferee::Params strict;
+  strict.upTilt = -1;
+  EXPECT_FALSE(sim::ChallengeReferee(strict).armRaised(r.world, 0));
+  // Pushed over: none either.
+  r.world.pushRobot(0, Eigen::Vector3d(-12, 0, 0));
+  r.run(3.0);
+  ASSERT_EQ(r.referee.falls(), 1);
+  EXPECT_FALSE(r.referee.armRaised(r.world, 0));
+}
+
 TEST(ChallengeReferee, ThreeFallsAndAFallWithoutGettingUp) {
   RefereeWorld r(Eigen::Vector3d(0, 0, 0));
   for (int fall = 1; fall <= 3; ++fall) {
