@@ -25,10 +25,11 @@ struct CalibratorOptions {
   // Acceptance of the solution.
   double maxRmsAngleDeg = 0.15;     // right-angle residuals
   // Goal-box depth residuals. The depth scales with the camera height the leg kinematics give,
-  // which a robot's joint encoder offsets (+-1 deg) put several millimetres off: challenge seed 7
-  // (randomised robot) solved all six offsets within 0.005 deg with 7.0 mm RMS. A wrong line
-  // pairing is off by decimetres.
-  double maxRmsDepthM = 0.012;
+  // which a robot's joint encoder offsets (+-1 deg) put several millimetres off (challenge seed 7,
+  // a randomised robot: all six offsets within 0.005 deg at 7.0 mm RMS), and the painted box
+  // itself may be a centimetre or two off (hall-d's bent paint: eval calibration seed 8, 15.8 mm
+  // RMS, offsets within 0.25 deg). Another pair of lines is off by 8 cm and more.
+  double maxRmsDepthM = 0.03;
 };
 
 struct CalibrationSolution {
