@@ -16,10 +16,15 @@ bool ChallengeReferee::leftField(const World& world, int robot) {
   return true;
 }
 
+namespace {
+// The torso's tilt from upright, deg.
+double torsoTiltDeg(const World& world, int robot) {
+  return std::acos(std::clamp(world.torsoPose(robot).linear()(2, 2), -1.0, 1.0)) * 180 / M_PI;
+}
+}  // namespace
+
 bool ChallengeReferee::armRaised(const World& world, int robot) const {
-  const Eigen::Isometry3d torso = world.torsoPose(robot);
-  const double tilt = std::acos(std::clamp(torso.linear()(2, 2), -1.0, 1.0)) * 180 / M_PI;
-  if (tilt > params_.upTilt) return false;
+  if (torsoTiltDeg(world, robot) > params_.upTilt) return false;
   const double headZ = world.cameraPose(robot, CameraId::Top).translation().z();
   return world.handPosition(robot, false).z() > headZ || world.handPosition(robot, true).z() > headZ;
 }
@@ -41,9 +46,8 @@ const std::string& ChallengeReferee::check(World& world, int robot, std::vector<
   }
   if (!terminated_.empty()) return terminated_;
 
-  const Eigen::Isometry3d torso = world.torsoPose(robot);
-  const double tilt = std::acos(std::clamp(torso.linear()(2, 2), -1.0, 1.0)) * 180 / M_PI;
-  const double z = torso.translation().z();
+  const double tilt = torsoTiltDeg(world, robot);
+  const double z = world.torsoPose(robot).translation().z();
   if (fallenSince_ < 0 && (tilt > params_.fallTilt || z < params_.fallHeight)) {
     fallenSince_ = t;
     ++falls_;

@@ -66,15 +66,16 @@ bool grassToPaint(const GradientImage& g, const Eigen::Vector2d& p, const Eigen:
   return at(p - o.colourOffsetPx * nb) - at(p + inside * nb) >= o.minGreennessStep;
 }
 
-// Weighted total least squares through points (the principal axis).
+// Total least squares through points (the principal axis), each point weighted by w (empty: 1).
 void fitLine(const std::vector<Eigen::Vector2d>& pts, const std::vector<double>& w, Eigen::Vector2d& mean,
              Eigen::Vector2d& dir) {
+  auto weight = [&](std::size_t i) { return w.empty() ? 1.0 : w[i]; };
   mean.setZero();
   double sum = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) mean += w[i] * pts[i], sum += w[i];
+  for (std::size_t i = 0; i < pts.size(); ++i) mean += weight(i) * pts[i], sum += weight(i);
   mean /= sum;
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (std::size_t i = 0; i < pts.size(); ++i) cov += w[i] * (pts[i] - mean) * (pts[i] - mean).transpose();
+  for (std::size_t i = 0; i < pts.size(); ++i) cov += weight(i) * (pts[i] - mean) * (pts[i] - mean).transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
   const Eigen::Vector2d d = es.eigenvectors().col(1);
   dir = d.dot(dir) < 0 ? Eigen::Vector2d(-d) : d;  // keep the orientation: the sides stay the sides
@@ -152,7 +153,7 @@ EdgeFit fitEdge(const GradientImage& g, const Stretch& st, const Eigen::Vector2d
     for (std::size_t i = 0; i < kept.size(); ++i)
       if (res[i] <= gate) inliers.push_back(kept[i]);
     if (static_cast<int>(inliers.size()) < o.minPoints) return fit;
-    fitLine(inliers, std::vector<double>(inliers.size(), 1.0), mean, dir);
+    fitLine(inliers, {}, mean, dir);
   }
   Eigen::Vector2d nn(-dir.y(), dir.x());
   double sum2 = 0, kMin = 1e30, kMax = -1e30;
