@@ -22,7 +22,7 @@ packages=(
   flite1-dev             # the robot's voice in the bundle: nao-soccer-say (apps/robot/SayMain.cpp)
   debootstrap            # the Debian 11 root the robot bundle is tested in (tests/robot_bundle.cmake)
   qemu-user              # the robot executable on a CPU without AVX (tests/robot_bundle.cmake)
-  clang libclang-rt-14-dev  # libFuzzer targets of the LoLA and GameController parsers (.ci/fuzz.sh)
+  clang libclang-rt-14-dev  # the sanitizer build (.ci/run) and the libFuzzer targets (.ci/fuzz.sh)
   chromium-headless-shell   # the match replay's page tested in a real browser (tests/match_replay_test.cpp)
   parallel                  # batch --runner parallel (GNU parallel)
   slurm-wlm munge           # batch --runner slurm on a single-node Slurm (tools/slurm-local.sh; tests/batch_test.cpp)

@@ -65,7 +65,9 @@ void applyCameraSettings(const std::string& path, std::array<V4l2CameraConfig, k
     if (name != "top" && name != "bottom") throw Error(path, name + ": unknown camera (top or bottom)");
     if (!value.is_object()) throw Error(path, name + ": expected an object");
     V4l2CameraConfig& c = cameras[name == "top" ? 0 : 1];
-    for (const auto& [key, v] : value.items()) {
+    for (const auto& item : value.items()) {
+      const std::string& key = item.key();
+      const auto& v = item.value();
       const std::string field = name + "." + key;
       auto integer = [&](int lo, int hi) {
         if (!v.is_number_integer() || v.get<long>() < lo || v.get<long>() > hi)

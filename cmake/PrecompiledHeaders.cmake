@@ -17,7 +17,7 @@ function(nao_pch_carrier name)
   add_library(${name} OBJECT ${source})
   target_link_libraries(${name} PRIVATE Eigen3::Eigen nlohmann_json::nlohmann_json ${ARGN})
   # The same warning options as nao_warnings: -Wpedantic changes the predefined macros.
-  target_compile_options(${name} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Winvalid-pch)
+  target_compile_options(${name} PRIVATE ${NAO_WARNING_OPTIONS} -Winvalid-pch)
   target_precompile_headers(${name} PRIVATE ${NAO_PCH_HEADERS} $<$<BOOL:${ARGN}>:<gtest/gtest.h$<ANGLE-R>>)
 endfunction()
 

@@ -94,7 +94,6 @@ class MotionEngine {
   Odometry odometry_;
   Pose2 walkOdometryBase_;  // odometry when the current walk segment began
   Pose2 walkOdometryLast_;  // the walk's odometry at the last cycle (to accumulate deltas)
-  bool walkActive_ = false;
   int walkTargetId_ = -1;
   Pose2 walkTarget_;        // in the odometry frame
   bool walkToStopped_ = false;

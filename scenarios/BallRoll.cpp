@@ -17,7 +17,6 @@ namespace nao::sim {
 namespace {
 
 constexpr double kStopSpeed = 0.01;  // m/s: the ball counts as stopped below this
-constexpr double kCycle = 0.012;     // s: one sample per robot cycle
 
 // The least squares slope of y over x (0 with fewer than 3 points).
 double slope(const std::vector<double>& x, const std::vector<double>& y) {

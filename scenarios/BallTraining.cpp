@@ -197,7 +197,8 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
         for (const VisibleBall& b : balls) {
           if (b.radiusPx < params.learnedMinRadiusPx * 0.8) continue;
           for (int a = 0; a < options.augmentations; ++a) {
-            const Eigen::Vector2d c = b.image + 0.2 * b.radiusPx * Eigen::Vector2d(uniform(-1, 1), uniform(-1, 1));
+            const double dy = uniform(-1, 1);  // before dx: the order the committed model was trained with
+            const Eigen::Vector2d c = b.image + 0.2 * b.radiusPx * Eigen::Vector2d(uniform(-1, 1), dy);
             add(vision::ballPatch(img, c, b.radiusPx * uniform(0.85, 1.25)), true);
           }
         }

@@ -185,7 +185,10 @@ std::array<Eigen::Vector2d, 2> phaseOneBalls(const FieldDimensions& field, std::
   std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ULL + 3);
   std::uniform_real_distribution<double> jitter(-0.2, 0.2);
   std::array<Eigen::Vector2d, 2> balls;
-  for (int i = 0; i < 2; ++i) balls[i] = Eigen::Vector2d((i ? 1 : -1) * field.length / 4 + jitter(rng), jitter(rng));
+  for (int i = 0; i < 2; ++i) {
+    const double y = jitter(rng);  // before x: the order the committed figures were made with
+    balls[i] = Eigen::Vector2d((i ? 1 : -1) * field.length / 4 + jitter(rng), y);
+  }
   return balls;
 }
 

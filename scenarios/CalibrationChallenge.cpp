@@ -97,7 +97,8 @@ std::array<Eigen::Vector2d, 2> phaseTwoBalls(const FieldDimensions& field, std::
   for (int i = 0; i < 2; ++i) {
     for (int attempt = 0;; ++attempt) {
       if (attempt > 100000) throw Error("calibration challenge", "no ball positions fit this field");
-      const Eigen::Vector2d b((i ? 1 : -1) * ux(rng), uy(rng));
+      const double y = uy(rng);  // before x: the order the committed figures were made with
+      const Eigen::Vector2d b((i ? 1 : -1) * ux(rng), y);
       if (lineDistance(model, b) < kLineClearance) continue;
       if ((b - start).norm() < kTargetClearance) continue;
       bool nearSpot = false;

@@ -14,7 +14,6 @@
 namespace nao::sim {
 
 namespace {
-constexpr double kDeg = M_PI / 180;
 
 const Lighting& lightingOf(const ChallengeEvalOptions& o, std::uint64_t seed) { return o.lightings[seed % o.lightings.size()]; }
 

@@ -107,8 +107,10 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
   const double side = u01(rng) < 0.5 ? -1.0 : 1.0;
   const Eigen::Vector3d start(uniform(-halfL + 0.5, -0.5), side * halfW, -side * M_PI / 2);
   Eigen::Vector2d ball;
-  do ball = Eigen::Vector2d(uniform(-halfL + 0.3, halfL - 0.3), uniform(-halfW + 0.3, halfW - 0.3));
-  while ((ball - start.head<2>()).norm() < 0.7);
+  do {
+    const double y = uniform(-halfW + 0.3, halfW - 0.3);  // before x: the order of the committed figures
+    ball = Eigen::Vector2d(uniform(-halfL + 0.3, halfL - 0.3), y);
+  } while ((ball - start.head<2>()).norm() < 0.7);
   // The scripted walk: field poses 1-3 m apart, away from the ball.
   std::vector<Pose2> legs;
   Eigen::Vector2d from = start.head<2>();

@@ -55,8 +55,9 @@ PerceptionBenchResult benchPerception(const PerceptionBenchOptions& options) {
   std::vector<CameraImage> images;
   std::vector<CameraMatrix> matrices;
   for (int f = 0; f < options.frames; ++f) {
-    const Eigen::Vector3d pose(uniform(-field.halfLength(), field.halfLength()),
-                               uniform(-field.halfWidth(), field.halfWidth()), uniform(-M_PI, M_PI));
+    // Drawn theta, y, x: the order GCC gave the constructor's arguments before.
+    const double theta = uniform(-M_PI, M_PI), y = uniform(-field.halfWidth(), field.halfWidth());
+    const Eigen::Vector3d pose(uniform(-field.halfLength(), field.halfLength()), y, theta);
     JointArray posture = StandController::standPosture();
     posture[HeadYaw] = uniform(-100, 100) * M_PI / 180;
     posture[HeadPitch] = uniform(-15, 25) * M_PI / 180;

@@ -562,7 +562,8 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
         const double dist = 0.12 + 5.9 * std::pow(uni(rng), 0.8);
         b = pose.head<2>() + dist * Eigen::Vector2d(std::cos(bearing), std::sin(bearing));
       } else {
-        b = Eigen::Vector2d(uniform(-field.halfLength(), field.halfLength()), uniform(-field.halfWidth(), field.halfWidth()));
+        const double y = uniform(-field.halfWidth(), field.halfWidth());  // before x: the committed figures' order
+        b = Eigen::Vector2d(uniform(-field.halfLength(), field.halfLength()), y);
       }
       if (onField(b)) {
         ball = b;

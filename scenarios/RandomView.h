@@ -1,9 +1,9 @@
 #pragma once
 // A random observer for the vision's evaluations and its training: anywhere on the field,
 // facing anywhere, the head anywhere in its usual range, small camera offsets. Both users draw
-// from rng through this one function, so a seed gives them the same scenes. (The pose's three
-// draws are constructor arguments, whose order C++ leaves to the compiler: kept so, the
-// committed figures and model stay those of the GCC build that made them.)
+// from rng through this one function, so a seed gives them the same scenes. The pose is drawn
+// theta, y, x: the order GCC evaluated the constructor's arguments in when the committed
+// figures and ball model were made (C++ leaves it to the compiler; now every compiler agrees).
 #include <array>
 #include <cmath>
 #include <random>
@@ -28,8 +28,8 @@ inline RandomView randomView(const FieldModel& field, double maxOffsetDeg, std::
   std::uniform_real_distribution<double> uni(0, 1);
   auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * uni(rng); };
   RandomView v;
-  v.pose = Eigen::Vector3d(uniform(-field.halfLength(), field.halfLength()),
-                           uniform(-field.halfWidth(), field.halfWidth()), uniform(-M_PI, M_PI));
+  const double theta = uniform(-M_PI, M_PI), y = uniform(-field.halfWidth(), field.halfWidth());
+  v.pose = Eigen::Vector3d(uniform(-field.halfLength(), field.halfLength()), y, theta);
   v.posture = StandController::standPosture();
   v.posture[HeadYaw] = uniform(-100, 100) * kDeg;
   v.posture[HeadPitch] = uniform(-15, 25) * kDeg;

@@ -235,7 +235,8 @@ WalkEvalResult evalWalk(const WalkEvalOptions& o) {
           // Uniform in the box of the limits (backwards up to the backward limit), then clipped
           // to the walk's speed ellipsoid: fast, combined commands included.
           const double vx = unit(rng) > -0.4 ? u01(rng) * limit.x : -u01(rng) * 0.22;
-          request.walkSpeed = Pose2(vx, unit(rng) * 0.2, unit(rng) * 1.2);
+          const double turn = unit(rng) * 1.2;  // before vy: the order of the committed figures
+          request.walkSpeed = Pose2(vx, unit(rng) * 0.2, turn);
         }
       }
       if (!sim.cycle(request)) throw Error("simulation", sim.stopReason());

@@ -123,7 +123,7 @@ CameraSensorParams CameraSensorParams::load(const std::string& file) {
                                         {"motion", &p.motion}}};
   for (const auto& [key, value] : root.items()) {
     if (!key.empty() && key[0] == '_') continue;  // comments
-    auto n = std::find_if(numbers.begin(), numbers.end(), [&](const Number& x) { return key == x.key; });
+    auto n = std::find_if(numbers.begin(), numbers.end(), [&k = key](const Number& x) { return k == x.key; });
     if (n != numbers.end()) {
       if (!value.is_number()) throw Error(file, key + ": must be a number");
       const double v = value.get<double>();
@@ -138,7 +138,7 @@ CameraSensorParams CameraSensorParams::load(const std::string& file) {
       }
       continue;
     }
-    auto s = std::find_if(switches.begin(), switches.end(), [&](const Switch& x) { return key == x.key; });
+    auto s = std::find_if(switches.begin(), switches.end(), [&k = key](const Switch& x) { return k == x.key; });
     if (s != switches.end()) {
       if (!value.is_boolean()) throw Error(file, key + ": must be true or false");
       *s->value = value.get<bool>();

@@ -47,7 +47,6 @@ class SimBackend : public Backend {
   int robot_;
   bool ownsStepping_;
   std::uint64_t cycle_ = 0;
-  bool started_ = false;
   ImageSource imageSource_;
   std::array<double, kNumCameras> nextDue_{};
   std::array<std::optional<CameraImage>, kNumCameras> pending_;

@@ -24,13 +24,21 @@ int falseCount(double mean, std::mt19937_64& rng) {
   return std::poisson_distribution<int>(mean)(rng);
 }
 
+// Two standard normal draws, y before x (the order GCC gave the arguments of the
+// constructor this replaced): one seed, the same percepts from every compiler.
+Eigen::Vector2d gaussian2(std::normal_distribution<double>& gauss, std::mt19937_64& rng) {
+  const double y = gauss(rng);
+  return {gauss(rng), y};
+}
+
 // A random ground point the camera sees, within maxDistance (nullopt after a few misses: a
 // camera looking up sees little ground).
 std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> randomGroundPixel(const CameraMatrix& cm, double maxDistance,
                                                                              std::mt19937_64& rng) {
   std::uniform_real_distribution<double> ux(0, cm.intrinsics.width), uy(0, cm.intrinsics.height);
   for (int attempt = 0; attempt < 8; ++attempt) {
-    const Eigen::Vector2d px(ux(rng), uy(rng));
+    const double y = uy(rng);  // drawn before x, as GCC ordered the arguments this replaced
+    const Eigen::Vector2d px(ux(rng), y);
     const auto g = cm.pixelToGround(px);
     if (g && g->norm() <= maxDistance) return std::make_pair(px, *g);
   }
@@ -112,7 +120,7 @@ CameraPercepts OracleVision::perceive(const OracleView& view, const CameraMatrix
   // The centre circle and the penalty mark: a detection rate and a ground error.
   auto spot = [&](const std::optional<OracleView::Spot>& s, const Params::Spot& sp) -> std::optional<Eigen::Vector2d> {
     if (s && happens(rate(sp.detection, p.distanceBins, s->distance)))
-      if (const auto g = cm.pixelToGround(s->image)) return *g + sp.sigma * Eigen::Vector2d(gauss(rng), gauss(rng));
+      if (const auto g = cm.pixelToGround(s->image)) return *g + sp.sigma * gaussian2(gauss, rng);
     if (happens(sp.falsePerImage))
       if (const auto r = randomGroundPixel(cm, std::min(maxDistance, 3.0), rng)) return r->second;
     return std::nullopt;
@@ -138,7 +146,7 @@ CameraPercepts OracleVision::perceive(const OracleView& view, const CameraMatrix
   bool reported = false;
   if (best) {
     const double sigma = std::max(p.ball.minSigmaPx, p.ball.sigmaPerRadius * best->radiusPx);
-    ballPx = best->image + sigma * Eigen::Vector2d(gauss(rng), gauss(rng));
+    ballPx = best->image + sigma * gaussian2(gauss, rng);
     radiusPx = best->radiusPx;
     reported = true;
   } else if (happens(p.ball.falsePerImage)) {

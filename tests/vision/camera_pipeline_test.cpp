@@ -347,7 +347,7 @@ TEST(CameraPipeline, CommittedConfigurationAndItsDocumentation) {
   std::stringstream doc;
   doc << in.rdbuf();
   for (const auto& [rep, module] : providers) {
-    const auto it = std::find_if(all.begin(), all.end(), [&](const ModuleInfo& m) { return m.name == module; });
+    const auto it = std::find_if(all.begin(), all.end(), [&name = module](const ModuleInfo& m) { return m.name == name; });
     ASSERT_NE(it, all.end()) << module;
     EXPECT_EQ(it->cadence, Cadence::Cognition) << module;
     const std::string row = "| `" + rep + "` | `" + module + "` | cognition |";
