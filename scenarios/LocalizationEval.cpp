@@ -21,6 +21,7 @@
 #include "sim/OracleCamera.h"
 #include "sim/SceneBuilder.h"
 #include "sim/SimBackend.h"
+#include "sim/Turf.h"
 #include "sim/World.h"
 
 namespace nao::sim {
@@ -40,9 +41,6 @@ constexpr double kRecoveryLimit = 10;        // s
 constexpr double kBallStill = 0.01;          // m/s: the true ball lies still below this speed
 constexpr double kFalseBallDistance = 0.5;   // m from every true ball
 constexpr double kRollingEndAfter = 1.0;     // s after the kick: the model's end position scored then
-// m/s^2: the simulated ball's rolling deceleration on the carpet (sim/World.cpp), to size the
-// kicks' speeds for rolls of 1-4 m.
-constexpr double kRollDeceleration = 0.8;
 constexpr double kRollMin = 1, kRollMax = 4;  // m: the rolls scored (the acceptance's kicks of 1-4 m)
 constexpr double kRollLimit = 8;             // s after the kick at most
 
@@ -353,7 +351,7 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
       roll = uniform(1.0, 4.0);
       const double direction = b + uniform(-90, 90) * kDeg;
       const Eigen::Vector2d dir(std::cos(direction), std::sin(direction));
-      velocity = std::sqrt(2 * kRollDeceleration * roll) * dir;
+      velocity = std::sqrt(2 * kBallRollingDeceleration * roll) * dir;  // rolls of 1-4 m
       if (inside(place, 0.3) && inside(place + roll * dir, 0.3)) break;
     }
     world.placeBall(0, Eigen::Vector3d(place.x(), place.y(), kBallRadius));

@@ -12,6 +12,7 @@
 #include "robot/Error.h"
 #include "sim/SceneBuilder.h"
 #include "sim/ServoModel.h"
+#include "sim/Turf.h"
 
 namespace nao::sim {
 
@@ -226,13 +227,12 @@ struct World::Impl {
     robots.push_back(r);
   }
 
-  // The turf's rolling resistance: a ball on the carpet decelerates by kRollingDeceleration
+  // The turf's rolling resistance: a ball on the carpet decelerates by kBallRollingDeceleration
   // against its direction of travel, whatever the direction (a horizontal force at its centre:
   // a solid sphere rolling without slipping decelerates by F / (1.4 m)), and its spin about the
   // vertical dies out. Near standstill the force shrinks with the speed, so the ball stops
   // instead of reversing within a step.
   void applyRollingResistance() {
-    constexpr double kRollingDeceleration = 0.8;  // m/s^2
     constexpr double kSpinDamping = 5.0;          // 1/s: the vertical spin's decay rate
     constexpr double kContactSlack = 0.005;       // m above resting height still on the carpet
     const double dt = m->opt.timestep;
@@ -243,7 +243,7 @@ struct World::Impl {
       const double vx = d->qvel[b.dof], vy = d->qvel[b.dof + 1], speed = std::hypot(vx, vy);
       const double mass = m->body_mass[b.body];
       if (speed > 1e-9) {
-        const double a = kRollingDeceleration * std::min(1.0, speed / (kRollingDeceleration * dt));
+        const double a = kBallRollingDeceleration * std::min(1.0, speed / (kBallRollingDeceleration * dt));
         f[0] = -1.4 * mass * a * vx / speed;
         f[1] = -1.4 * mass * a * vy / speed;
       }
