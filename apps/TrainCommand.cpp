@@ -64,7 +64,7 @@ int trainFrictionCommand(const TrainFrictionOptions& options) {
   o.seed = options.common.seed;
   o.progress = [](int done, int total) { progress("train friction: rolling", done, total); };
   const double current = modules::BallLocator::Params{}.filter.friction;
-  constexpr double kPlaceholder = 0.3;  // the friction before this fit (B-Human's venue value)
+  constexpr double kPlaceholder = 0.8;  // the committed friction before the carpet's 0.30 (docs/plans/one-vs-one.md)
   const sim::BallRollFit fit = sim::fitBallRolls(o, kPlaceholder);
   nlohmann::json j = fit.toJson();
   j["seed"] = o.seed;

@@ -69,11 +69,12 @@ std::vector<BallRollSpec> ballRollSpecs(const BallRollOptions& o) {
     // Through the centre spot, or 2 m beside it when running along the field (the goals).
     const bool alongX = std::abs(dir.x()) > std::cos(25 * M_PI / 180);
     const Eigen::Vector2d through(0, alongX ? (i % 2 ? -2.0 : 2.0) : 0.0);
-    // Back from there towards the wall behind, as far as half the path at 0.45 m/s^2 asks.
+    // Back from there towards the wall behind, as far as half the path at 0.25 m/s^2 asks (a
+    // guess on the slow side of carpets: the roll stays clear of the far wall).
     double back = 1e9;
     if (std::abs(dir.x()) > 1e-9) back = std::min(back, (wallX + std::copysign(through.x(), dir.x())) / std::abs(dir.x()));
     if (std::abs(dir.y()) > 1e-9) back = std::min(back, (wallY + std::copysign(through.y(), dir.y())) / std::abs(dir.y()));
-    s.start = through - std::min(back, s.speed * s.speed / (2 * 0.45) / 2) * dir;
+    s.start = through - std::min(back, s.speed * s.speed / (2 * 0.25) / 2) * dir;
     specs.push_back(s);
   }
   return specs;

@@ -39,7 +39,7 @@ struct BallRoll {
 struct BallRollOptions {
   FieldDimensions field;
   int rolls = 16;           // speeds evenly spaced from minSpeed to maxSpeed
-  double minSpeed = 0.5, maxSpeed = 4;  // m/s
+  double minSpeed = 0.5, maxSpeed = 2;  // m/s (2 m/s: a kick's roll, 6.7 m on the carpet)
   std::uint64_t seed = 1;   // jitters the directions (+-5 deg)
   double maxSeconds = 30;   // per roll
   std::function<void(int done, int total)> progress;

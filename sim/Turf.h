@@ -5,9 +5,9 @@
 namespace nao::sim {
 
 // m/s^2: a ball rolling on the carpet decelerates by this, whatever its direction
-// (World::applyRollingResistance). It came from MuJoCo's rolling friction, not from a carpet;
-// B-Human's venue value is 0.30 (../shared/reference/localization-and-ball-model.md), which
-// would carry the kick twice as far (docs/plans/one-vs-one.md).
-constexpr double kBallRollingDeceleration = 0.8;
+// (World::applyRollingResistance). B-Human's venue value (../shared/reference/
+// localization-and-ball-model.md), the one measured carpet we know of; until 2026-12-06 it was
+// 0.8, from MuJoCo's rolling friction, and the kick went half as far (docs/plans/one-vs-one.md).
+constexpr double kBallRollingDeceleration = 0.3;
 
 }  // namespace nao::sim

@@ -65,7 +65,9 @@ TEST(Striker, StandsWithoutAGameControllerOrWhenPenalisedAndPositionsInReady) {
 }
 
 TEST(Striker, SearchesWithoutABallThenWalksBehindItAndKicks) {
-  Striker s(nao::FieldDimensions{}, {});
+  Striker::Params shortKick;
+  shortKick.kick.travel = 3.2;  // the goal out of reach: a straight ball-in-half kick
+  Striker s(nao::FieldDimensions{}, shortKick);
   Inputs i;
   nao::MotionRequest m;
   i.pose.pose = i.pose.odometry = Pose2(-2, 0, 0);

@@ -178,7 +178,7 @@ struct TrainBallOptions {
 struct TrainFrictionOptions {
   CommonOptions common;
   int rolls = 16;
-  double minSpeed = 0.5, maxSpeed = 4;
+  double minSpeed = 0.5, maxSpeed = 2;
 };
 
 struct CalibrateOptions {

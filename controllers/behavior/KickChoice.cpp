@@ -56,8 +56,12 @@ KickChoice chooseKick(const Eigen::Vector2d& ball, const std::optional<Eigen::Ve
                       const FieldDimensions& field, const KickChoiceParams& p) {
   KickChoice choice;
   const Eigen::Vector2d goal(field.length / 2, 0);
-  // At the goal: within the kick's shortest travel, through its widest open interval.
-  if ((goal - ball).norm() + 0.1 <= p.travel * (1 - p.travelSpread)) {
+  // At the goal through its widest open interval: the longest travel reaches the goal's
+  // centre, the shortest the other half.
+  const double halfway = field.lineWidth / 2 + kBallRadius + p.margin;
+  const double toGoal = (goal - ball).norm();
+  const double shortest = p.travel * (1 - p.travelSpread);
+  if (toGoal <= p.travel * (1 + p.travelSpread) && ball.x() + shortest * (goal.x() - ball.x()) / toGoal >= halfway) {
     const auto open = openGoal(ball, opponent, field, p.robotRadius);
     const auto widest = std::max_element(open.begin(), open.end(),
                                          [](const Interval& a, const Interval& b) { return a.width() < b.width(); });
@@ -69,7 +73,6 @@ KickChoice chooseKick(const Eigen::Vector2d& ball, const std::optional<Eigen::Ve
       return choice;
     }
   }
-  const double halfway = field.lineWidth / 2 + kBallRadius + p.margin;
   const double sideY = field.width / 2 - p.margin, endX = field.length / 2 - p.margin;
   const double inGoal = field.goalInnerWidth / 2 - kBallRadius - p.margin;
   const double travels[] = {p.travel * (1 - p.travelSpread), p.travel, p.travel * (1 + p.travelSpread)};

@@ -1,12 +1,14 @@
 #pragma once
 // The striker's choice of a kick in a 1vs1 game (../shared/reference/one-vs-one.md), in the
 // robot's own field frame (it attacks +x, its half is x < 0): at the goal when the goal's open
-// angle, seen from the ball past the opponent, is wide enough and the goal within the kick's
-// reach; otherwise a kick whose ball stops in the opponent half for every direction within the
+// angle, seen from the ball past the opponent, is wide enough, the longest travel reaches the
+// goal and the shortest still crosses the halfway line (a short kick is then a ball in the
+// other half, a long one ends in the net: a goal gives the ball back, one-vs-one.md);
+// otherwise a kick whose ball stops in the opponent half for every direction within the
 // kick's inaccuracy and every travel within its spread, as far from the opponent as possible;
 // otherwise (the ball too deep in the own half) the kick that carries it furthest forward and
-// keeps it on the field. One kick strength: the motion's kick travels about 3.2 m
-// (docs/motion, `kick --trials 20`).
+// keeps it on the field. One kick strength: the motion's kick travels about 6.6 m on the
+// carpet (`kick --trials 20`; docs/plans/one-vs-one.md).
 #include <optional>
 
 #include <Eigen/Core>
@@ -16,7 +18,7 @@
 namespace nao::behavior {
 
 struct KickChoiceParams {
-  double travel = 3.2;          // m: the kick's median travel
+  double travel = 6.6;          // m: the kick's median travel
   double travelSpread = 0.25;   // the travel varies by this share either way
   double inaccuracy = 10;       // deg: the kick's direction error assumed
   double minOpenAngle = 6;      // deg: the goal's open angle needed to kick at it

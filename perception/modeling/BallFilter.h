@@ -20,7 +20,7 @@ namespace nao {
 class BallFilter {
  public:
   struct Params {
-    double friction = 0.8;                // m/s^2, the constant deceleration of a rolling ball (the
+    double friction = 0.3;                // m/s^2, the constant deceleration of a rolling ball (the
                                            // simulator's, fitted by `nao-soccer train friction`)
     double stationaryProcessSigma = 0.01;  // m/sqrt(s): a lying ball's random walk
     double rollingAccelSigma = 0.15;       // m/s^2: white acceleration noise of a rolling ball
