@@ -119,6 +119,38 @@ TEST(Striker, SearchesWithoutABallThenWalksBehindItAndKicks) {
   EXPECT_EQ(s.kicks(), 1);
 }
 
+// A ball that stopped just in front of the own goal (the opponent's long kicks): the robot
+// never walks into the goal or over the end line to kick it; it kicks at an angle from the field.
+TEST(Striker, ABallAtTheOwnGoalLineIsKickedFromTheField) {
+  const Striker::Params p;
+  const double minX = -4.5 + p.endLineClearance;
+  for (const Eigen::Vector2d& ball : {Eigen::Vector2d(-4.42, 0.3), Eigen::Vector2d(-4.4, -0.6), Eigen::Vector2d(-4.35, 1.5)}) {
+    for (const Pose2& from : {Pose2(-3, 0, 0), Pose2(-4.0, 1.0, -M_PI / 2), Pose2(-3.5, -1.5, M_PI)}) {
+      Striker s(nao::FieldDimensions{}, p);
+      Inputs i;
+      nao::MotionRequest m;
+      i.place(from, ball);
+      s.run(i.in(), m);
+      ASSERT_EQ(m.motion, MotionType::WalkTo) << ball.transpose();
+      // The walk target is in the field frame here (odometry = field pose).
+      EXPECT_GE(m.walkTarget.x, minX - 1e-9) << ball.transpose() << " from " << from.x << ", " << from.y;
+      // The kick's own pose is on the field, and the kick still goes away from the own goal.
+      const double d = s.lastChoice().direction;
+      const Eigen::Vector2d pose = ball - Eigen::Vector2d(std::cos(d) * p.kickBallX - std::sin(d) * p.kickBallY,
+                                                         std::sin(d) * p.kickBallX + std::cos(d) * p.kickBallY);
+      EXPECT_GE(pose.x(), minX - 1e-9) << ball.transpose();
+      EXPECT_LE(std::abs(d), M_PI / 2 + 1e-9) << ball.transpose();
+    }
+  }
+  // Further out the kick is the chosen one (no turn): a ball at x = -3.9 is kicked straight on.
+  Striker s(nao::FieldDimensions{}, p);
+  Inputs i;
+  nao::MotionRequest m;
+  i.place(Pose2(-3, 0, 0), {-3.9, 0.0});
+  s.run(i.in(), m);
+  EXPECT_NE(s.lastChoice().kind, nao::behavior::KickChoice::Kind::Advance);
+}
+
 TEST(Striker, ScansTheOwnHalfWhenNoKnownBallIsInReach) {
   Striker s(nao::FieldDimensions{}, {});
   Inputs i;

@@ -148,6 +148,24 @@ void Striker::run(const BehaviorInput& in, const BallTracks& balls, MotionReques
     // This kick's pose would touch the halfway line: the straight one (reachable) instead.
     choice_ = KickChoice{KickChoice::Kind::Advance, 0.0, ball + Eigen::Vector2d(params_.kick.travel, 0), 0};
   }
+  // A ball just in front of the own end line has no kick pose behind it on the field: the
+  // smallest turn of the kick (towards the field's middle first) whose pose is on it, else the
+  // turn whose pose is furthest from the line.
+  const double minX = -field_.length / 2 + params_.endLineClearance;
+  if (!baseline && kickPose(ball, choice_.direction).x() < minX) {
+    constexpr double kStep = 5 * M_PI / 180;
+    const double towardsMiddle = ball.y() > 0 ? -1 : 1;
+    double turned = choice_.direction, turnedX = kickPose(ball, turned).x();
+    for (double turn = kStep; turn <= M_PI / 2 + 1e-9 && turnedX < minX; turn += kStep)
+      for (double sign : {towardsMiddle, -towardsMiddle}) {
+        const double direction = Pose2::wrap(choice_.direction + sign * turn);
+        const double x = kickPose(ball, direction).x();
+        if (x > turnedX + 1e-9) turned = direction, turnedX = x;
+        if (turnedX >= minX) break;
+      }
+    choice_ = KickChoice{KickChoice::Kind::Advance, turned,
+                         ball + params_.kick.travel * Eigen::Vector2d(std::cos(turned), std::sin(turned)), 0};
+  }
   const Eigen::Vector2d kickAt = kickPose(ball, choice_.direction);
   // Aligned: the ball where the kick wants it and the heading along the kick.
   const Eigen::Vector2d error = ballRelative - Eigen::Vector2d(params_.kickBallX, params_.kickBallY);
@@ -168,7 +186,7 @@ void Striker::run(const BehaviorInput& in, const BallTracks& balls, MotionReques
     const double side = across >= 0 ? 1 : -1;
     Eigen::Vector2d via = ball + Eigen::Vector2d(-c * params_.roundOffset - s * side * params_.roundOffset,
                                                  -s * params_.roundOffset + c * side * params_.roundOffset);
-    via.x() = std::min(via.x(), limitX);
+    via.x() = std::clamp(via.x(), minX, limitX);
     goTo_.run(in, Pose2(via.x(), via.y(), choice_.direction), motion);
     return;
   }

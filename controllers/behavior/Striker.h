@@ -46,6 +46,10 @@ class Striker {
     double rollingShadow = 1.0;   // m: tracks this near a rolling ball are where it was
     double halfwayGuard = 0.05;   // m: the torso this far past the nearest kick pose: ...
     double backOffSpeed = 0.1;    // m/s: ... it steps back (field -x)
+    // m: the kick pose (and a way round the ball) stays this far inside the own end line: a ball
+    // just in front of the own goal is kicked at an angle rather than from inside the goal
+    // (the referee's goal area call).
+    double endLineClearance = 0.1;
     GoToPose::Params goTo;
     KickChoiceParams kick;
   };
@@ -97,6 +101,7 @@ void describe(V& v, Striker::Params& p) {
   v("rollingShadow", p.rollingShadow, 0.0, 10.0);
   v("halfwayGuard", p.halfwayGuard, 0.0, 1.0);
   v("backOffSpeed", p.backOffSpeed, 0.0, 0.5);
+  v("endLineClearance", p.endLineClearance, 0.0, 1.0);
   v("goTo", p.goTo);
   v("kick", p.kick);
 }
