@@ -99,6 +99,13 @@ TEST(RobotRules, AFallenRobotMustStartGettingUpIn5sAndStandIn20s) {
   // Up at 8 s and stays up: no call (legal).
   RobotRules up(field(), 0);
   EXPECT_FALSE(run(up, State::Playing, 40, [](double t) { return t < 2 ? lying(-2, 90, 0.08) : t < 8 ? lying(-2, 60, 0.12) : standing(-2, 0); }).called);
+  // Up at 8 s, standing a little low (a randomised robot walking: torso 0.218 m, tilt 4 deg):
+  // standing all the same (eval match seed 16 at 8329e0d was called here).
+  RobotRules low(field(), 0);
+  EXPECT_FALSE(run(low, State::Playing, 40, [](double t) { return t < 2 ? lying(-2, 90, 0.08) : t < 8 ? lying(-2, 60, 0.12) : lying(-2, 4, 0.218); }).called);
+  // Kneeling upright (torso 0.18 m) is not standing: called at 20 s.
+  RobotRules kneeling(field(), 0);
+  EXPECT_NEAR(run(kneeling, State::Playing, 40, [](double t) { return t < 2 ? lying(-2, 90, 0.08) : lying(-2, 5, 0.18); }).t, 20, 0.02);
   // Up at 8 s, down again at 12 s (before 10 s upright): the same fall, called at 20 s.
   RobotRules again(field(), 0);
   const Result c = run(again, State::Playing, 40, [](double t) {
