@@ -7,6 +7,8 @@
 
 #include "apps/Cli.h"
 #include "apps/Commands.h"
+#include "controllers/RobotProgram.h"
+#include "controllers/modules/MotionEngineParams.h"
 #include "robot/Error.h"
 #include "scenarios/KickEval.h"
 
@@ -17,6 +19,8 @@ int kickCommand(const KickOptions& options) {
   o.trials = options.trials;
   o.seed = options.common.seed;
   o.randomize = options.randomize;
+  // The motion engine as the robot program runs it: config/parameters/MotionEngine.json.
+  o.params = loadParams<MotionEngine::Params>("MotionEngine", RobotProgramConfig::defaultConfigDir());
   o.progress = [](int done, int total) { progress("kick", done, total); };
   const sim::KickEvalResult r = sim::evalKick(o);
   constexpr double kDeg = M_PI / 180;

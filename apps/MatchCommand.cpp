@@ -41,6 +41,8 @@ int matchCommand(const MatchOptions& options) {
   }
   checkRobotModel(o.robotModel, o.field);
   o.progress = [](double t, const std::string& status) { std::fprintf(stderr, "match: %5.0f s simulated, %s\n", t, status.c_str()); };
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
   const sim::MatchResult r = sim::runMatch(o);
   std::fprintf(stderr, "match: %s, home %d : %d away after %.1f s simulated (%.1f s wall, %.2fx real time)\n",
                r.state.c_str(), r.homeScore, r.awayScore, r.simSeconds, r.wallSeconds,

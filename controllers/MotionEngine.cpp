@@ -166,6 +166,15 @@ Pose2 MotionEngine::walkToSpeed(const Pose2& target, double positionTolerance, d
   return walk_.clipSpeed(speed);
 }
 
+void MotionEngine::traceWalkTo(const SensorFrame& frame, const Pose2& speed, const char* what) const {
+  if (!debug_->on(kWalkToTrace) || static_cast<int>(frame.time / kCycle) % 8 != 0) return;
+  const Pose2 rel = odometry_.pose.inverse() * walkTarget_;
+  debug_->write(kWalkToTrace, {{"for", what},
+                               {"target", {rel.x, rel.y, rel.theta * 180 / M_PI}},
+                               {"speed", {speed.x, speed.y, speed.theta * 180 / M_PI}},
+                               {"phase", kPhaseNames[static_cast<int>(walk_.phase())]}});
+}
+
 JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fall, const MotionRequest& request,
                                   const HeadJointRequest& head, const ArmMotionRequest& arm) {
   info_.motion = request.motion;
@@ -203,12 +212,7 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
           }
           speed = walkToSpeed(walkTarget_, params_.walkToPositionTolerance, params_.walkToAngleTolerance, true);
           stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
-          if (debug_->on(kWalkToTrace) && static_cast<int>(frame.time / kCycle) % 8 == 0) {
-            const Pose2 rel = odometry_.pose.inverse() * walkTarget_;
-            debug_->write(kWalkToTrace, {{"target", {rel.x, rel.y, rel.theta * 180 / M_PI}},
-                                         {"speed", {speed.x, speed.y, speed.theta * 180 / M_PI}},
-                                         {"phase", kPhaseNames[static_cast<int>(walk_.phase())]}});
-          }
+          traceWalkTo(frame, speed, "walk_to");
           break;
         case MotionType::Kick:
           if (request.kickId != doneKickId_) {
@@ -221,6 +225,7 @@ JointRequest MotionEngine::update(const SensorFrame& frame, const FallState& fal
             const Pose2 pose = kickPose(request.ballPosition, request.kickDirection, kickLeft_);
             speed = walkToSpeed(odometry_.pose * pose, params_.kickPositionTolerance, params_.kickAngleTolerance, false);
             stop = speed.x == 0 && speed.y == 0 && speed.theta == 0;
+            traceWalkTo(frame, speed, "kick");
           }
           break;
         default: break;

@@ -43,8 +43,12 @@ class MotionEngine {
     double walkToAngleTolerance = 0.03;     // rad
     // Once stopped, the robot walks again only when the stand pose is this many tolerances off.
     double walkToResumePosition = 2.5, walkToResumeAngle = 2.0;
-    double kickPositionTolerance = 0.015;   // m: the kick pose reached (the kick corrects the rest)
-    double kickAngleTolerance = 0.06;       // rad
+    // The kick pose reached: the kick's strike follows the ball and turns the foot by what is
+    // left. Twice the old 0.015 m and 0.06 rad saves the approach's slow last centimetres:
+    // `kick --trials 12` median time to the kick's end 7.96 s against 10.24 s, travel 6.48 m
+    // against 6.53 m, direction error median 1.6 deg against 1.2 deg (docs/plans/one-vs-one.md).
+    double kickPositionTolerance = 0.03;    // m
+    double kickAngleTolerance = 0.1;        // rad
     double armRaiseTime = 0.6;              // s, down to up (and back)
   };
 
@@ -76,6 +80,8 @@ class MotionEngine {
   JointRequest interpolate(const SensorFrame& frame, const JointArray& goal, double duration, double stiffness);
   // byStopPose: steer by Walk::stopPoseEstimate (WalkTo), else by standPoseEstimate (the kick's approach).
   Pose2 walkToSpeed(const Pose2& target, double positionTolerance, double angleTolerance, bool byStopPose);
+  // One walk_to_trace line (every 8th cycle): the target relative to the robot, the speed, the phase.
+  void traceWalkTo(const SensorFrame& frame, const Pose2& speed, const char* what) const;
   Pose2 kickPose(const Eigen::Vector2d& ball, double direction, bool leftFoot) const;
   bool wantsFeet(const MotionRequest& request) const;
   void applyHead(JointRequest& out, const HeadJointRequest& head) const;

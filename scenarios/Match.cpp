@@ -292,6 +292,7 @@ MatchResult runMatch(const MatchOptions& o) {
     }
     if (oracle) config.providers["CameraPercepts"] = "OracleVision";
     config.seed = o.seed * 2 + static_cast<std::uint64_t>(r);
+    if (r == 0) config.debug = o.debug;
     p.program = std::make_unique<RobotProgram>(config);
     GameController::Config rc;
     rc.team = o.teams[static_cast<std::size_t>(r)];

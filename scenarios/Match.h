@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "perception/FieldDimensions.h"
+#include "robot/Debug.h"
 #include "scenarios/Situation.h"
 #include "sim/Lighting.h"
 #include "sim/VenueLook.h"
@@ -47,6 +48,7 @@ struct MatchOptions {
   // scripts and balls; no operator (no kick-off, no SET, no balls at SET); it runs its seconds.
   std::optional<Situation> situation;
   std::function<void(double simTime, const std::string& status)> progress;  // about every 10 simulated s
+  DebugChannels* debug = nullptr;  // the home robot program's debug channels (`match --debug`)
 };
 
 // Where a match's wall time went, in seconds. The game's loop: physics, images, cognition,

@@ -1,6 +1,7 @@
 // --debug CHANNEL[,CHANNEL] on the commands (robot/Debug.h): `timing` names every module of the
 // robot program, walk_trace carries the walk's real steps, an unknown channel is refused before
-// the run, and with the default sink (stderr) stdout still carries only the JSON.
+// the run, and with the default sink (stderr) stdout still carries only the JSON; `match --debug`
+// traces the home robot's behaviour: its striker's state, the ball it chose and its pose.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -119,6 +120,37 @@ TEST(DebugChannels, WalkTraceCarriesTheWalksSteps) {
   EXPECT_GT(left, 2);
   EXPECT_GT(right, 2);
   EXPECT_GT(maxSpeed, 0.1) << "the walk accelerated towards 200 mm/s";
+}
+
+TEST(DebugChannels, MatchTracesTheHomeStrikersChoices) {
+  // A ball 0.6 m in front of the home robot, PLAYING: the striker goes for that ball.
+  const std::string situation = tempPath("striker.json"), lines = tempPath("match.jsonl");
+  std::ofstream(situation) << R"({"state": "PLAYING", "seconds": 3,
+    "robots": [{"team": "home", "pose": [-2.0, 0.5, 0], "program": true}],
+    "balls": [{"position": [-1.4, 0.7]}]})";
+  const auto r = runCommand("match --situation " + situation + " --percepts oracle --debug behavior --debug-out " +
+                                lines + " --json " + tempPath("match.json"),
+                            300);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto all = jsonLines(lines);
+  ASSERT_GE(all.size(), 30u) << "a line per image of the home robot's 3 s";
+  int chose = 0, after = 0;
+  std::set<std::string> states;
+  for (const auto& j : all) {
+    EXPECT_EQ(j.at("channel"), "behavior");
+    if (j.at("t").get<double>() < 1.0) continue;  // localized from the side line's view
+    ++after;
+    EXPECT_NEAR(j.at("pose")[0].get<double>(), -1.9, 0.3) << j.dump();
+    EXPECT_NEAR(j.at("pose")[1].get<double>(), 0.55, 0.3) << j.dump();
+    states.insert(j.at("striker").get<std::string>());
+    if (j.at("striker_ball").is_array()) {
+      ++chose;
+      EXPECT_NEAR(j.at("striker_ball")[0].get<double>(), -1.4, 0.15) << j.dump();
+      EXPECT_NEAR(j.at("striker_ball")[1].get<double>(), 0.7, 0.15) << j.dump();
+    }
+  }
+  EXPECT_GT(chose, after * 3 / 4);
+  EXPECT_TRUE(states.count("approach") && states.count("kick")) << "walks to the ball and kicks it";
 }
 
 TEST(DebugChannels, UnknownChannelIsRefusedBeforeTheRun) {

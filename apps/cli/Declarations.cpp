@@ -606,6 +606,7 @@ void CommandLine::declare() {
                    "write pictures into DIR: the field from above (true and believed poses and balls) every 10 "
                    "simulated s, at each point and referee call and at the end; with the vision, both robots' "
                    "camera images at those moments");
+    debugOptions(c, k.debug);
   }
   {
     BatchOptions& b = o.batch;

@@ -208,6 +208,7 @@ struct MatchOptions {
   bool randomize = false;
   std::string opponent = "self", replay, situation, images;
   std::string percepts = "vision";
+  DebugOptions debug;  // the home robot program's channels
 };
 
 struct EvalMatchOptions {

@@ -63,6 +63,7 @@ class Striker {
   // The chosen ball (robot frame) while the ball model does not follow it: where to look.
   const std::optional<Eigen::Vector2d>& lookAt() const { return lookAt_; }
   const KickChoice& lastChoice() const { return choice_; }
+  const std::optional<Eigen::Vector2d>& target() const { return target_; }  // field: the ball chosen
   int kicks() const { return kicks_; }
 
  private:
