@@ -59,7 +59,7 @@ TEST(Match, BothRobotsGetReadyInTheirHalvesAndPlayStarts) {
   EXPECT_NEAR(stateAt["PLAYING"], stateAt["SET"] + 5, 0.05);
   EXPECT_EQ(ballsPlaced, 1);
   for (const auto& robot : j["robots"]) {
-    EXPECT_GT(robot["distance_m"].get<double>(), 1.5) << robot.dump();  // from the side line towards (-+1, 0)
+    EXPECT_GT(robot["distance_m"].get<double>(), 1.5) << robot.dump();  // from the side line towards (-+4.2, 0)
     EXPECT_GE(robot["localization_error_m"].get<double>(), 0) << robot.dump();
     EXPECT_LT(robot["localization_error_m"].get<double>(), 0.25) << robot.dump();
   }

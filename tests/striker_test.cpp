@@ -60,7 +60,7 @@ TEST(Striker, StandsWithoutAGameControllerOrWhenPenalisedAndPositionsInReady) {
   s.run(i.in(), m);
   EXPECT_EQ(s.state(), Striker::State::Position);
   ASSERT_EQ(m.motion, MotionType::WalkTo);
-  EXPECT_NEAR(m.walkTarget.x, -1.0, 1e-9);  // the ready pose, odometry frame = field frame here
+  EXPECT_NEAR(m.walkTarget.x, -4.2, 1e-9);  // the ready pose, odometry frame = field frame here
   EXPECT_NEAR(m.walkTarget.y, 0.0, 1e-9);
 }
 

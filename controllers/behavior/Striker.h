@@ -1,6 +1,6 @@
 #pragma once
 // Option: a 1vs1 player while the GameController runs the game. INITIAL, SET, FINISHED and
-// penalised: stand. READY: walk to the kick-off position in the own half. PLAYING: of the balls
+// penalised: stand. READY: walk behind the own half's two balls. PLAYING: of the balls
 // it knows (BallTracks; the ball model when it follows one of them), take the nearest one it
 // can kick without touching the halfway line (keeping its choice unless another is clearly
 // nearer); walk behind it on the line of the chosen kick (KickChoice), round the ball when
@@ -28,7 +28,10 @@ class Striker {
  public:
   struct Params {
     std::string player = "striker";  // or "baseline"
-    Pose2 readyPose{-1.0, 0.0, 0.0};  // where READY ends
+    // Where READY ends: between the own half's two balls (the goal box's corners, placed at
+    // SET), behind them, facing the other half: the first kick comes 7 s into PLAYING instead
+    // of 17 s from (-1, 0), which had to walk back round a ball (docs/plans/one-vs-one.md).
+    Pose2 readyPose{-4.2, 0.0, 0.0};
     double kickBallX = 0.16, kickBallY = 0.05;  // m: the ball in the robot frame at a kick (the kick's own)
     // The ball this near its kick position and the heading this near the kick's direction: the
     // kick starts (the motion engine walks the last centimetres itself, on odometry).
