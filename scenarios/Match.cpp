@@ -521,7 +521,10 @@ MatchResult runMatch(const MatchOptions& o) {
       }
       if (p.rules->fallen() && !p.wasFallen) {
         ++p.falls;
-        event({{"kind", "fall"}, {"team", kTeamNames[r]}});
+        // Where (field frame) and how near the other robot was: a collision or the robot's own.
+        nlohmann::json fall = {{"kind", "fall"}, {"team", kTeamNames[r]}, {"at", {truth.torso.x(), truth.torso.y()}}};
+        if (world.robotCount() > 1) fall["other_robot_m"] = (truth.torso.head<2>() - world.robotPose(1 - r).head<2>()).norm();
+        event(fall);
       }
       p.wasFallen = p.rules->fallen();
     }

@@ -40,7 +40,8 @@ std::optional<RobotRules::Call> RobotRules::update(double t, gc::State state, co
 
   if (state == gc::State::Set) {
     if (before != gc::State::Set) {
-      setFeet_ = truth.feet;
+      setSince_ = t;
+      setFeetTaken_ = false;
       setJudged_ = false;
       // Inside the own half: every sole corner short of the halfway line and within the lines
       // (a line belongs to its region; the halfway line to neither half, a goal's inside neither).
@@ -53,6 +54,11 @@ std::optional<RobotRules::Call> RobotRules::update(double t, gc::State state, co
                       format("a sole corner at (%.2f, %.2f) m when SET began", c.x(), c.y())};
         }
       }
+    }
+    if (t - setSince_ < params_.setGrace) return std::nullopt;
+    if (!setFeetTaken_) {
+      setFeet_ = truth.feet;
+      setFeetTaken_ = true;
     }
     for (int f = 0; f < 2 && !setJudged_; ++f) {
       const double moved = (truth.feet[static_cast<std::size_t>(f)] - setFeet_[static_cast<std::size_t>(f)]).norm();

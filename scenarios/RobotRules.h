@@ -4,7 +4,8 @@
 // the carpet of the own half, touching or crossing the halfway line, more than 5 s inside a
 // goal, fallen (no get-up started within 5 s, or not standing within 20 s and upright for
 // 10 s), inactive for 10 s, a stance wider than the shoulders for more than 5 s, a hand on the
-// ball (not while fallen), and in SET: not inside the own half when SET starts, moving the legs.
+// ball (not while fallen), and in SET: not inside the own half when SET starts, moving the legs
+// (once the robot has had time to hear SET).
 // The match measures what a rule needs (RobotRules::Truth) and applies the calls.
 #include <array>
 #include <optional>
@@ -35,6 +36,10 @@ class RobotRules {
     double stanceTime = 5;
     double goalTime = 5;
     double setMotion = 0.05;  // m a foot may move in SET (settling, not walking)
+    // s after SET began before the feet must keep still: the robot hears SET from the next
+    // GameController packet (every 0.5 s) and finishes the step it is in (up to 0.5 s). At
+    // 0 s a robot was called 0.08 s into SET, before its packet came (eval match seed 5).
+    double setGrace = 1.0;
   };
   struct Truth {
     std::array<Eigen::Vector2d, 8> soleCorners;  // field frame (both soles)
@@ -72,7 +77,8 @@ class RobotRules {
   bool getUpStarted_ = false;
   double inactiveSince_ = -1, wideSince_ = -1, inGoalSince_ = -1;
   std::array<Eigen::Vector2d, 2> setFeet_;
-  bool setJudged_ = false;
+  double setSince_ = 0;
+  bool setFeetTaken_ = false, setJudged_ = false;
 };
 
 }  // namespace nao::sim

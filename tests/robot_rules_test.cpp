@@ -196,9 +196,12 @@ TEST(RobotRules, InSetTheRobotMustBeInItsHalfAndKeepItsFeetStill) {
   const Result m = run(walking, State::Set, 3, [](double t) { return standing(1.5 + 0.1 * t, 0, M_PI); });
   ASSERT_TRUE(m.called);
   EXPECT_EQ(m.rule, PenaltyRule::MotionInSet);
-  EXPECT_NEAR(m.t, 0.5, 0.02);
+  EXPECT_NEAR(m.t, 1.5, 0.02) << "still walking 1 s into SET, then 0.05 m more";
   RobotRules settled(field(), 1);  // swaying 2 cm: legal
   EXPECT_FALSE(run(settled, State::Set, 5, [](double t) { return standing(1.5 + 0.02 * std::sin(t), 0, M_PI); }).called);
+  // Walking when SET begins, stopping within the step it hears SET in (0.1 m in 0.6 s): legal.
+  RobotRules stopping(field(), 1);
+  EXPECT_FALSE(run(stopping, State::Set, 5, [](double t) { return standing(1.5 + 0.1 * std::min(t / 0.6, 1.0), 0, M_PI); }).called);
 }
 
 }  // namespace
