@@ -29,6 +29,9 @@ int matchCommand(const MatchOptions& options) {
   o.percepts = options.percepts;
   o.replay = !options.replay.empty();
   o.imagesDir = options.images;
+  o.gc = options.gc;
+  o.gcPort = static_cast<std::uint16_t>(options.gcPort);
+  o.gcReturnPort = static_cast<std::uint16_t>(options.gcReturnPort);
   if (!options.situation.empty()) {
     o.situation = sim::loadSituation(options.situation, o.halfSeconds);
     if (!o.situation->field.empty() && !options.common.has("--field")) {

@@ -104,6 +104,7 @@ void GameControllerSim::go(gc::State s, double t) {
 void GameControllerSim::update(double t) {
   const double dt = std::max(0.0, t - now_);
   now_ = std::max(now_, t);
+  if (external_) return;  // the external GameController runs the clocks
   // Penalty time runs in READY and PLAYING, not in SET (the rules) nor outside play.
   if (data_.state == gc::State::Ready || data_.state == gc::State::Playing) {
     for (int team = 0; team < 2; ++team)
@@ -184,6 +185,50 @@ void GameControllerSim::startAt(gc::State state, double secsRemaining, bool firs
   remaining_ = secsRemaining;
   log(t, "situation", std::string(gc::stateName(state)) + (firstHalf ? ", first half" : ", second half"));
   go(state, t);
+}
+
+bool GameControllerSim::follow(const gc::GameControlData& in, double t) {
+  std::array<const gc::TeamInfo*, 2> teams{};
+  for (int team = 0; team < 2; ++team)
+    for (const gc::TeamInfo& info : in.teams)
+      if (info.teamNumber == config_.teams[static_cast<std::size_t>(team)]) teams[static_cast<std::size_t>(team)] = &info;
+  if (!teams[0] || !teams[1]) return false;
+  external_ = true;
+  now_ = std::max(now_, t);
+  if (in.firstHalf != data_.firstHalf) log(t, "half", in.firstHalf ? "first half" : "second half");
+  if (in.state != data_.state) {
+    data_.state = in.state;
+    since_ = t;
+    log(t, "state", gc::stateName(in.state));
+  }
+  data_.firstHalf = in.firstHalf;
+  data_.setPlay = in.setPlay;
+  data_.kickingTeam = in.kickingTeam;
+  data_.secsRemaining = in.secsRemaining;
+  data_.secondaryTime = in.secondaryTime;
+  remaining_ = in.secsRemaining;
+  for (int team = 0; team < 2; ++team) {
+    const gc::TeamInfo& info = *teams[static_cast<std::size_t>(team)];
+    gc::TeamInfo& own = data_.teams[static_cast<std::size_t>(team)];
+    if (info.score != own.score) {
+      own.score = info.score;
+      log(t, "score", std::to_string(data_.teams[0].score) + ":" + std::to_string(data_.teams[1].score), team);
+    }
+    for (int p = 1; p <= config_.players; ++p) {
+      Robot& r = robot(team, p);
+      const gc::PlayerInfo& player = info.players[static_cast<std::size_t>(p - 1)];
+      const auto penalty = static_cast<gc::Penalty>(player.penalty);
+      if (penalty != r.penalty)
+        log(t, penalty == gc::Penalty::None ? "unpenalise" : "penalty",
+            "player " + std::to_string(p) + (penalty == gc::Penalty::None ? "" : std::string(": ") + gc::penaltyName(penalty)),
+            team);
+      r.penalty = penalty;
+      r.left = player.secsTillUnpenalised;
+      own.players[static_cast<std::size_t>(p - 1)] = player;
+    }
+  }
+  over_ = in.state == gc::State::Finished && in.firstHalf == 0;
+  return true;
 }
 
 void GameControllerSim::point(int team, double t) {

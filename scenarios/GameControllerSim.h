@@ -64,6 +64,12 @@ class GameControllerSim {
   void startSecondHalf(double t);  // after the first half's FINISHED: INITIAL, second half
   // A scripted situation's start (match --situation): this state, this much of the half left.
   void startAt(gc::State state, double secsRemaining, bool firstHalf, double t);
+  // An external GameController's packet as the authority (match --gc udp): its state, half,
+  // clock, scores and penalties replace this one's, each change logged as the own would be;
+  // update() then only keeps the time. Returns false (nothing taken) for a packet without
+  // this game's teams.
+  bool follow(const gc::GameControlData& packet, double t);
+  bool external() const { return external_; }
   // A point for `team` (0 home, 1 away): the score, the state stays PLAYING.
   void point(int team, double t);
   // Penalises a robot (player 1..players) by the rule; returns the removal time in s (0 when
@@ -118,6 +124,7 @@ class GameControllerSim {
   int extensions_ = 0;
   int tossWinner_ = -1;
   bool over_ = false;
+  bool external_ = false;
   double lastPacket_ = -1e9;
   std::vector<Event> events_;
 };

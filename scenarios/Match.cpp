@@ -4,17 +4,21 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <map>
 #include <memory>
 #include <random>
+#include <thread>
 
 #include "controllers/RobotProgram.h"
 #include "controllers/StandController.h"
 #include "representations/infrastructure/GameControllerData.h"
+#include "representations/perception/FallState.h"
 #include "representations/modeling/BallModel.h"
 #include "representations/modeling/RobotPose.h"
 #include "robot/Error.h"
 #include "robot/nao/GameController.h"
 #include "scenarios/BallRules.h"
+#include "scenarios/GameControllerLink.h"
 #include "scenarios/GameControllerSim.h"
 #include "scenarios/MatchReplay.h"
 #include "scenarios/RobotRules.h"
@@ -110,6 +114,7 @@ struct Player {
   std::unique_ptr<SimBackend> backend;
   std::unique_ptr<RobotProgram> program;
   std::unique_ptr<GameController> receiver;
+  std::map<std::string, double> lastAdvice;  // --gc udp: when each rule was last called for this robot
   std::unique_ptr<RobotRules> rules;
   std::deque<Sample> recent;  // the last 2 s, one sample per 0.1 s
   double nextSample = 0;
@@ -239,6 +244,10 @@ MatchResult runMatch(const MatchOptions& o) {
   gcConfig.teams = o.teams;
   gcConfig.halfSeconds = o.halfSeconds;
   GameControllerSim gc(gcConfig);
+  const bool external = o.gc == "udp";
+  if (external && o.situation) throw Error("--gc", "udp runs a game, not a scripted situation");
+  std::optional<GameControllerLink> link;
+  if (external) link.emplace(o.gcPort);
   for (int r = 0; r < 2; ++r) world.setGeomColour(r, "torso_geom", jerseyColour(gcConfig.colours[static_cast<std::size_t>(r)]));
   BallRules ballRules(f);
   nlohmann::json events = nlohmann::json::array();
@@ -298,7 +307,8 @@ MatchResult runMatch(const MatchOptions& o) {
     rc.team = o.teams[static_cast<std::size_t>(r)];
     rc.player = 1;
     rc.port = 0;
-    rc.bindAddress = "127.0.0.1";
+    rc.bindAddress = external ? "0.0.0.0" : "127.0.0.1";
+    rc.returnPort = o.gcReturnPort;
     // What each robot's receiver logs (state changes, rejected packets) goes to the event log.
     p.receiver = std::make_unique<GameController>(
         rc, [&event, r](const std::string& line) { event({{"kind", "robot_log"}, {"team", kTeamNames[r]}, {"text", line}}); });
@@ -338,7 +348,7 @@ MatchResult runMatch(const MatchOptions& o) {
   };
 
   double endTime = o.seconds > 0 ? o.seconds : 1e9;
-  double readyAt = 2.0;  // the operator's kick-off, 2 s after the robots stand at their starts
+  double readyAt = external ? -1.0 : 2.0;  // the operator's kick-off, 2 s after the robots stand at their starts
   std::vector<bool> kicked;  // a situation's ball velocities given
   if (situation) {
     readyAt = -1;
@@ -382,6 +392,9 @@ MatchResult runMatch(const MatchOptions& o) {
                 lastImages[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)]);
   };
   bool coinTossed = false;
+  const auto loopStart = std::chrono::steady_clock::now();
+  auto lastPacketWall = loopStart;
+  const double simStart = world.time();
   const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   while (world.time() < endTime - 1e-9 && !gc.finished()) {
     {
@@ -418,12 +431,37 @@ MatchResult runMatch(const MatchOptions& o) {
       wall.motion += timing.motionMs / 1000;
       for (double ms : timing.cognitionMs) wall.cognition += ms / 1000;
     }
+    if (external) {
+      // The external GameController: its datagrams to both robots, its state to the match.
+      link->receive([&](const std::uint8_t* data, std::size_t size, const sockaddr_in& from) {
+        for (Player& p : players) p.receiver->handlePacket(data, size, t, &from);
+        try {
+          if (gc.follow(gc::parseGameControlData(data, size), t)) lastPacketWall = std::chrono::steady_clock::now();
+        } catch (const Error& e) {
+          event({{"kind", "gc_rejected"}, {"text", e.what()}});
+        }
+      });
+      const double silent = std::chrono::duration<double>(std::chrono::steady_clock::now() - lastPacketWall).count();
+      if (silent > o.gcWait)
+        throw RunFailure("--gc", "no GameController packet for this game's teams on UDP port " + std::to_string(link->port()) +
+                                " for " + std::to_string(static_cast<int>(o.gcWait)) + " s");
+      // An external GameController keeps the wall clock: the simulation keeps pace with it.
+      const double ahead = (t - simStart) - std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
+      if (ahead > 0) std::this_thread::sleep_for(std::chrono::duration<double>(ahead));
+    }
+    for (Player& p : players) {
+      gc::ReturnData ret;
+      ret.playerNum = 1;
+      ret.teamNum = static_cast<std::uint8_t>(o.teams[static_cast<std::size_t>(&p - players.data())]);
+      ret.fallen = p.program->blackboard().has<FallState>() && p.program->blackboard().read<FallState>().fallen ? 1 : 0;
+      p.receiver->sendReturnIfDue(t, ret);
+    }
     // The operator.
     if (gc.state() == gc::State::Initial && readyAt >= 0 && t >= readyAt) {
       gc.ready(t);
       readyAt = -1;
     }
-    if (gc.state() == gc::State::Ready && t - stateSince >= 5) {
+    if (!external && gc.state() == gc::State::Ready && t - stateSince >= 5) {
       bool still = true;  // both robots have stood for 2 s: in position
       for (const Player& p : players)
         if (p.recent.size() < 20 || (p.recent.back().pose - p.recent.front().pose).head<2>().norm() > 0.03) still = false;
@@ -447,12 +485,14 @@ MatchResult runMatch(const MatchOptions& o) {
           world.placeBall(i, parkedBall(f, i));
           inPlay[static_cast<std::size_t>(i)] = false;
         }
-        gc.startSecondHalf(t);
-        lastState = gc.state();
-        readyAt = t + 2.0;
+        if (!external) {
+          gc.startSecondHalf(t);
+          lastState = gc.state();
+          readyAt = t + 2.0;
+        }
       }
     }
-    if (gc.packetDue(t)) {
+    if (!external && gc.packetDue(t)) {
       const auto packet = gc.packet();
       for (Player& p : players) p.receiver->handlePacket(packet.data(), packet.size(), t);
     }
@@ -484,6 +524,14 @@ MatchResult runMatch(const MatchOptions& o) {
       if (!p.present) continue;
       const bool penalised = gc.penalised(r, 1);
       if (p.wasPenalised && !penalised) placeAtStart(r, "return after the penalty");
+      if (external && !p.wasPenalised && penalised && gc.state() != gc::State::Set) {
+        // Penalised by the external operator: removed, as the referee would take it off.
+        world.placeRobot(r, parkPose(f, r, homeNegative), StandController::standPosture());
+        p.rules->placed();
+        p.lastPose = world.robotPose(r);
+        event({{"kind", "place"}, {"team", kTeamNames[r]}, {"what", "removed: penalised by the GameController"}});
+        ++p.penalties;
+      }
       p.wasPenalised = penalised;
       if (penalised) continue;
       RobotRules::Truth truth;
@@ -509,9 +557,17 @@ MatchResult runMatch(const MatchOptions& o) {
           if (inPlay[static_cast<std::size_t>(i)] && (world.handPosition(r, left) - world.ballPosition(i)).norm() < 0.09)
             truth.handOnBall = true;
       if (const auto call = p.rules->update(t, gc.state(), truth)) {
-        event({{"kind", "call"}, {"rule", ruleName(call->rule)}, {"team", kTeamNames[r]}, {"evidence", call->evidence}});
-        gc.penalise(r, 1, call->rule, t);
-        ++p.penalties;
+        nlohmann::json callEvent = {{"kind", "call"}, {"rule", ruleName(call->rule)}, {"team", kTeamNames[r]}, {"evidence", call->evidence}};
+        // With an external operator the call is advice: logged once per rule and 10 s while
+        // the robot stays where the rule sees it.
+        double& last = p.lastAdvice[ruleName(call->rule)];
+        if (external) callEvent["applied"] = false;
+        if (!external || last == 0 || t - last >= 10) event(callEvent);
+        if (external) last = t;
+        if (!external) {
+          gc.penalise(r, 1, call->rule, t);
+          ++p.penalties;
+        }
         if (gc.penalised(r, 1) && call->rule != PenaltyRule::MotionInSet) {  // removed (or excluded)
           world.placeRobot(r, parkPose(f, r, homeNegative), StandController::standPosture());
           p.rules->placed();
@@ -550,7 +606,7 @@ MatchResult runMatch(const MatchOptions& o) {
     const std::vector<Eigen::Vector2d> robotPositions = {world.robotPose(0).head<2>(), world.robotPose(1).head<2>()};
     for (const BallRules::Call& c : ballRules.update(t, balls, touches, robotPositions)) {
       if (c.kind == "point" && gc.state() == gc::State::Playing) {
-        gc.point(c.team, t);
+        if (!external) gc.point(c.team, t);  // else the external operator scores
         ++pointsByKind[static_cast<std::size_t>(c.team)][c.how == "goal" ? 0 : 1];
         event({{"kind", "point"}, {"team", kTeamNames[c.team]}, {"how", c.how}, {"ball", c.ball}, {"at", {c.at.x(), c.at.y()}}});
       } else if (c.kind == "no_point") {
@@ -581,12 +637,16 @@ MatchResult runMatch(const MatchOptions& o) {
                                                        : nullptr;
     if (stuck) {
       event({{"kind", "call"}, {"rule", "global_game_stuck"}, {"evidence", stuck}});
-      gc.globalGameStuck(t);
-      lastState = gc.state();
-      stateSince = t;
-      for (int i = 0; i < kBalls; ++i) {
-        world.placeBall(i, parkedBall(f, i));
-        inPlay[static_cast<std::size_t>(i)] = false;
+      if (external) {
+        lastChange = lastCrossing = t;  // the operator decides; judged again from now
+      } else {
+        gc.globalGameStuck(t);
+        lastState = gc.state();
+        stateSince = t;
+        for (int i = 0; i < kBalls; ++i) {
+          world.placeBall(i, parkedBall(f, i));
+          inPlay[static_cast<std::size_t>(i)] = false;
+        }
       }
     }
     if (o.replay && t >= nextFrame - 1e-9) {

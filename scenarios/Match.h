@@ -49,6 +49,14 @@ struct MatchOptions {
   std::optional<Situation> situation;
   std::function<void(double simTime, const std::string& status)> progress;  // about every 10 simulated s
   DebugChannels* debug = nullptr;  // the home robot program's debug channels (`match --debug`)
+  // "inprocess": the simulated GameController runs the game; "udp": an external GameController
+  // does, over UDP (scenarios/GameControllerLink.h): the match takes its packets on gcPort,
+  // hands them to both robots, whose return packets go to its gcReturnPort; the simulation
+  // runs at real time, the referee's calls and points go to the event log only (the operator
+  // penalises and scores), and no packet within gcWait wall seconds fails the match.
+  std::string gc = "inprocess";
+  std::uint16_t gcPort = 3838, gcReturnPort = 3939;
+  double gcWait = 30;
 };
 
 // Where a match's wall time went, in seconds. The game's loop: physics, images, cognition,

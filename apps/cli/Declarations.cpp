@@ -607,6 +607,18 @@ void CommandLine::declare() {
                    "simulated s, at each point and referee call and at the end; with the vision, both robots' "
                    "camera images at those moments");
     debugOptions(c, k.debug);
+    c.choice("--gc", k.gc, {"inprocess", "udp"},
+             "who runs the game: inprocess (the simulated GameController) or udp (an external GameController on "
+             "this machine's network: its packets on --gc-port go to both robots, their return packets to its "
+             "--gc-return-port; teams 5 (home) and 6 (away); the simulation keeps real time; the referee's calls "
+             "and points are logged for the operator)");
+    auto* port = c.count("--gc-port", k.gcPort, 1, 65535, "udp: the GameController's port (default 3838)");
+    auto* returnPort = c.count("--gc-return-port", k.gcReturnPort, 1, 65535, "udp: the return packets' port (default 3939)");
+    c.rule([&k, port, returnPort] {
+      if ((port->count() > 0 || returnPort->count() > 0) && k.gc != "udp") return std::string("--gc-port and --gc-return-port: only with --gc udp");
+      if (k.gc == "udp" && !k.situation.empty()) return std::string("--gc udp: runs a game, not a --situation");
+      return std::string();
+    });
   }
   {
     BatchOptions& b = o.batch;

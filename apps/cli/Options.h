@@ -209,6 +209,8 @@ struct MatchOptions {
   std::string opponent = "self", replay, situation, images;
   std::string percepts = "vision";
   DebugOptions debug;  // the home robot program's channels
+  std::string gc = "inprocess";
+  int gcPort = 3838, gcReturnPort = 3939;
 };
 
 struct EvalMatchOptions {
