@@ -3,32 +3,11 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
-#include <string>
-
-#include "robot/Error.h"
+#include "robot/nao/GameController.h"
 
 namespace nao::sim {
 
-GameControllerLink::GameControllerLink(std::uint16_t port) {
-  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (fd_ < 0) throw Error("--gc-port", std::string("socket: ") + std::strerror(errno));
-  const int one = 1;
-  ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(port);
-  addr.sin_addr.s_addr = htonl(INADDR_ANY);
-  if (::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) < 0) {
-    const std::string why = std::strerror(errno);
-    ::close(fd_);
-    throw Error("--gc-port", "cannot bind UDP port " + std::to_string(port) + ": " + why);
-  }
-  socklen_t len = sizeof addr;
-  ::getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
-  port_ = ntohs(addr.sin_port);
-}
+GameControllerLink::GameControllerLink(std::uint16_t port) { fd_ = gc::bindUdp("0.0.0.0", port, port_); }
 
 GameControllerLink::~GameControllerLink() {
   if (fd_ >= 0) ::close(fd_);

@@ -305,29 +305,34 @@ const ButtonState& ButtonInterface::update(const std::array<double, NumTouch>& t
   return s;
 }
 
+int gc::bindUdp(const std::string& address, std::uint16_t port, std::uint16_t& bound) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0) throw Error("--gc-port", std::string("socket: ") + std::strerror(errno));
+  const int one = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(port);
+  if (::inet_pton(AF_INET, address.c_str(), &addr.sin_addr) != 1) {
+    ::close(fd);
+    throw Error("--gc-address", "'" + address + "' is not an IPv4 address");
+  }
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) < 0) {
+    const std::string why = std::strerror(errno);
+    ::close(fd);
+    throw Error("--gc-port", "cannot bind UDP " + address + ":" + std::to_string(port) + ": " + why);
+  }
+  socklen_t len = sizeof addr;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+  bound = ntohs(addr.sin_port);
+  return fd;
+}
+
 GameController::GameController(Config config, Log log) : config_(std::move(config)), log_(std::move(log)) {
   if (!log_) log_ = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   state_.teamNumber = config_.team;
   state_.playerNumber = config_.player;
-  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (fd_ < 0) throw Error("--gc-port", std::string("socket: ") + std::strerror(errno));
-  const int one = 1;
-  ::setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(config_.port);
-  if (::inet_pton(AF_INET, config_.bindAddress.c_str(), &addr.sin_addr) != 1) {
-    ::close(fd_);
-    throw Error("--gc-address", "'" + config_.bindAddress + "' is not an IPv4 address");
-  }
-  if (::bind(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) < 0) {
-    const std::string why = std::strerror(errno);
-    ::close(fd_);
-    throw Error("--gc-port", "cannot bind UDP " + config_.bindAddress + ":" + std::to_string(config_.port) + ": " + why);
-  }
-  socklen_t len = sizeof addr;
-  ::getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
-  boundPort_ = ntohs(addr.sin_port);
+  fd_ = gc::bindUdp(config_.bindAddress, config_.port, boundPort_);
 }
 
 GameController::~GameController() {

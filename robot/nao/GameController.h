@@ -78,6 +78,9 @@ struct ReturnData {
 GameControlData parseGameControlData(const std::uint8_t* data, std::size_t size);
 std::array<std::uint8_t, kPacketSize> serialize(const GameControlData& data);
 ReturnData parseReturnData(const std::uint8_t* data, std::size_t size);
+// A non-blocking UDP socket bound to address:port (port 0: any free one), SO_REUSEADDR;
+// `bound` gets the port. Throws nao::Error("--gc-address" or "--gc-port", why).
+int bindUdp(const std::string& address, std::uint16_t port, std::uint16_t& bound);
 std::array<std::uint8_t, kReturnSize> serialize(const ReturnData& data);
 
 }  // namespace nao::gc
