@@ -448,13 +448,14 @@ MatchResult runMatch(const MatchOptions& o) {
       // An external GameController keeps the wall clock: the simulation keeps pace with it.
       const double ahead = (t - simStart) - std::chrono::duration<double>(std::chrono::steady_clock::now() - loopStart).count();
       if (ahead > 0) std::this_thread::sleep_for(std::chrono::duration<double>(ahead));
-    }
-    for (Player& p : players) {
-      gc::ReturnData ret;
-      ret.playerNum = 1;
-      ret.teamNum = static_cast<std::uint8_t>(o.teams[static_cast<std::size_t>(&p - players.data())]);
-      ret.fallen = p.program->blackboard().has<FallState>() && p.program->blackboard().read<FallState>().fallen ? 1 : 0;
-      p.receiver->sendReturnIfDue(t, ret);
+      // Return packets (in process the receivers have no sender to answer).
+      for (Player& p : players) {
+        gc::ReturnData ret;
+        ret.playerNum = 1;
+        ret.teamNum = static_cast<std::uint8_t>(o.teams[static_cast<std::size_t>(&p - players.data())]);
+        ret.fallen = p.program->blackboard().has<FallState>() && p.program->blackboard().read<FallState>().fallen ? 1 : 0;
+        p.receiver->sendReturnIfDue(t, ret);
+      }
     }
     // The operator.
     if (gc.state() == gc::State::Initial && readyAt >= 0 && t >= readyAt) {
