@@ -291,6 +291,8 @@ int evalCalibrationCommand(const EvalCalibrationOptions& options) {
   o.randomize = options.randomize;
   o.solver = cal::parseSolver(options.solver);
   o.imagesDir = options.images;
+  DebugSink debug(options.debug);
+  o.debug = debug.channels();
   nlohmann::json lightings = nlohmann::json::array();
   for (const sim::Lighting& l : o.lightings) lightings.push_back(l.name);
   // What a row was drawn from: rows of other settings are refused.

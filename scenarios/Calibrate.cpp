@@ -359,6 +359,7 @@ CalibrationTrial runCalibrationTrial(const CalibrationEvalOptions& o, std::uint6
   run.timeLimit = o.timeLimit;
   run.venue = o.venue.forSeed(seed);
   run.randomize = o.randomize;
+  run.debug = o.debug;
   if (!o.imagesDir.empty()) run.imagesDir = o.imagesDir + "/seed_" + std::to_string(seed);
 
   CalibrationTrial trial;

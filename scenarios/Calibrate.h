@@ -133,6 +133,7 @@ struct CalibrationEvalOptions {
   bool randomize = false;                 // foreign robots (ChallengeSetup::randomize)
   std::string imagesDir;                  // non-empty: trial seed s writes its views into imagesDir/seed_s
   std::function<void(int done, int total)> progress;
+  DebugChannels* debug = nullptr;         // every trial's robot program's debug channels (not owned)
 };
 
 struct CalibrationTrial {

@@ -179,12 +179,12 @@ TEST(CalibrateCameras, TheGoalBoxInViewDecidesTheStartSide) {
   const BehaviorCommand command;
   const CalibrationStatus status;
   const CameraCalibration current;
-  auto decide = [&](std::optional<double> boxLateral, double believedY, double seconds) {
+  auto decide = [&](std::optional<double> boxLateral, double believedY, double seconds, double believedX = -3.2) {
     behavior::CalibrateCameras c(standardField(), StandController::standPosture(), {});
     c.restart(0);
     RobotPose pose;
     pose.valid = true;
-    pose.pose = Pose2(-3.2, believedY, believedY > 0 ? -M_PI / 2 : M_PI / 2);
+    pose.pose = Pose2(believedX, believedY, believedY > 0 ? -M_PI / 2 : M_PI / 2);
     CameraPercepts p;
     p.processed = true;
     if (boxLateral) {
@@ -219,6 +219,10 @@ TEST(CalibrateCameras, TheGoalBoxInViewDecidesTheStartSide) {
   EXPECT_EQ(decide(std::nullopt, -3.0, 5.0), std::make_pair(-1, std::string("localization")));
   // A box straight ahead says nothing.
   EXPECT_EQ(decide(0.0, -3.0, 5.0), std::make_pair(-1, std::string("localization")));
+  // A pose in the other half is the point mirror of the start (the rules start the robot in its
+  // own half): (2.66, 3.19) facing -y means (-2.66, -3.19) facing +y, the right side line.
+  EXPECT_EQ(decide(std::nullopt, 3.19, 5.0, 2.66), std::make_pair(-1, std::string("localization")));
+  EXPECT_EQ(decide(std::nullopt, -3.0, 5.0, 3.2), std::make_pair(1, std::string("localization")));
 }
 
 TEST(ChallengeTasks, TheBallSentenceInMillimetres) {

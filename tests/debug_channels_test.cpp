@@ -153,6 +153,24 @@ TEST(DebugChannels, MatchTracesTheHomeStrikersChoices) {
   EXPECT_TRUE(states.count("approach") && states.count("kick")) << "walks to the ball and kicks it";
 }
 
+// eval calibration --debug: each trial's robot program traces its phase 1 (how seed 41's
+// wrong start side was found: docs/results/README.md).
+TEST(DebugChannels, EvalCalibrationTracesTheTrialsRobotProgram) {
+  const std::string lines = tempPath("eval_calibration.jsonl");
+  const auto r = runCommand("eval calibration --trials 1 --lighting default --time-limit 6 --debug behavior --debug-out " +
+                                lines + " --json " + tempPath("eval_calibration.json"),
+                            300);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto all = jsonLines(lines);
+  ASSERT_GE(all.size(), 100u) << "a line per image of 6 s";
+  std::set<std::string> states;
+  for (const auto& j : all) {
+    EXPECT_EQ(j.at("channel"), "behavior");
+    states.insert(j.at("calibrate").get<std::string>());
+  }
+  EXPECT_TRUE(states.count("localize")) << "phase 1 starts by deciding its side line";
+}
+
 TEST(DebugChannels, UnknownChannelIsRefusedBeforeTheRun) {
   const std::string lines = tempPath("never.jsonl");
   fs::remove(lines);

@@ -421,6 +421,7 @@ void CommandLine::declare() {
 
     const std::string randomize = "'foreign' robots: link masses +-5%, joint offsets +-1 deg, floor friction 0.6-1.0";
     ck.flag("--randomize", k.randomize, randomize + " (the head's aside)");
+    debugOptions(ck, k.debug);
 
     EvalLocalizationOptions& l = o.evalLocalization;
     Command& cl = leaf(eval, "localization",

@@ -125,6 +125,7 @@ struct EvalCalibrationOptions {
   int trials = 100;
   double maxOffset = 3, timeLimit = 600;
   std::vector<std::uint64_t> seeds;  // --seeds: exactly these trials
+  DebugOptions debug;
 };
 
 struct EvalLocalizationOptions {

@@ -42,8 +42,12 @@ int CalibrateCameras::decideSide(const BehaviorInput& in, const CameraPercepts& 
     if (sideVotes_[1] >= params_.sideShare * votes) return -1;
   }
   summary_.sideFrom = "localization";
-  if (waited >= params_.sideTimeout && in.pose.valid) return in.pose.pose.y >= 0 ? 1 : -1;
-  return 0;
+  if (waited < params_.sideTimeout || !in.pose.valid) return 0;
+  // The field is point symmetric and the rules' start is in the own half: a pose in the other
+  // half is the mirror of the true one (eval calibration seed 41: dark, no box seen, the pose
+  // settled at (2.66, 3.19) for a start at (-3.2, -3) and the robot calibrated the wrong corner).
+  const double y = in.pose.pose.x > 0 ? -in.pose.pose.y : in.pose.pose.y;
+  return y >= 0 ? 1 : -1;
 }
 
 void CalibrateCameras::planFrom(int sideSign, const RobotPose& pose) {
