@@ -63,7 +63,7 @@ bool clipBelowHorizon(const CameraMatrix& cm, ImageLine& e, double minDepression
 std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const GradientImage& gradients,
                                          const CameraMatrix& coarse, const CalibrationSample& proto,
                                          const CameraCalibration& current, const ExtractionOptions& o,
-                                         std::string& reason) {
+                                         double longDepressionDeg, std::string& reason) {
   // 3: refine each line away from the junctions.
   const double s1 = sinBetween(det.shortLine, det.longLine1), s2 = sinBetween(det.shortLine, det.longLine2);
   const double ws = det.shortLine.widthPx, w1 = det.longLine1.widthPx, w2 = det.longLine2.widthPx;
@@ -83,8 +83,9 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
                                   refineLine(gradients, det.longLine1, long1Excl, longOpts),
                                   refineLine(gradients, det.longLine2, long2Excl, longOpts)};
   CalibrationSample sample = proto;
-  const double minDepression = o.minDepressionDeg * std::numbers::pi / 180;
   for (int l = 0; l < 3; ++l) {
+    const double minDepressionDeg = l == 0 ? o.minDepressionDeg : longDepressionDeg;
+    const double minDepression = minDepressionDeg * std::numbers::pi / 180;
     if (!refined[l].ok) {
       reason = std::string("occluded or unclear ") + kLineRoleNames[l] + " line: " + refined[l].reason;
       return std::nullopt;
@@ -98,7 +99,7 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
     if (!clipBelowHorizon(coarse, sample.lines[l].edgeA, minDepression, o.minClippedLengthPx) ||
         !clipBelowHorizon(coarse, sample.lines[l].edgeB, minDepression, o.minClippedLengthPx)) {
       reason = std::string("implausible ") + kLineRoleNames[l] + " line: " +
-               fmt("less than %.0f px of it lies %.0f deg below the horizon", o.minClippedLengthPx, o.minDepressionDeg);
+               fmt("less than %.0f px of it lies %.0f deg below the horizon", o.minClippedLengthPx, minDepressionDeg);
       return std::nullopt;
     }
   }
@@ -179,8 +180,35 @@ ExtractionResult extract(const CameraImage& image, const CameraMatrix& coarse, c
 
   GradientImage gradients = GradientImage::sobel(gray);
   gradients.greenness = greenness(image);
-  // Tries goal box candidates, best first, until one gives a sample; the reason kept is the
-  // first candidate's of the first source.
+  // What each source tried, for the second pass.
+  struct Attempt {
+    const char* source;
+    std::vector<ImageSegment> segments;
+    std::vector<GoalBoxSideDetection> candidates;
+  };
+  std::vector<Attempt> attempts;
+  // Measures an attempt's candidates, best first, until one gives a sample; without one the
+  // reason kept is the first candidate's of the first source.
+  auto measureCandidates = [&](const Attempt& a, double longDepressionDeg) {
+    for (std::size_t c = 0; c < a.candidates.size() && c < static_cast<std::size_t>(o.maxCandidates); ++c) {
+      std::string reason;
+      auto sample = measure(a.candidates[c], gradients, coarse, proto, current, o, longDepressionDeg, reason);
+      if (sample) {
+        out.segments = a.segments;
+        out.detection = a.candidates[c];
+        out.sample = sample;
+        out.source = a.source;
+        out.reason.clear();
+        return true;
+      }
+      if (c == 0 && (out.reason.empty() || out.reason.rfind("goal box not found", 0) == 0)) {
+        out.segments = a.segments;
+        out.detection = a.candidates[c];
+        out.reason = reason;
+      }
+    }
+    return false;
+  };
   auto tryCandidates = [&](const char* source, const std::vector<ImageSegment>& segments,
                            std::vector<GoalBoxSideDetection> candidates) {
     for (auto& c : findGoalBoxSideCandidates(segments, image.width, image.height, o.finder)) candidates.push_back(c);
@@ -188,24 +216,8 @@ ExtractionResult extract(const CameraImage& image, const CameraMatrix& coarse, c
       out.reason = "goal box not found: no short line joining two long lines";
       out.segments = segments;
     }
-    for (std::size_t c = 0; c < candidates.size() && c < static_cast<std::size_t>(o.maxCandidates); ++c) {
-      std::string reason;
-      auto sample = measure(candidates[c], gradients, coarse, proto, current, o, reason);
-      if (sample) {
-        out.segments = segments;
-        out.detection = candidates[c];
-        out.sample = sample;
-        out.source = source;
-        out.reason.clear();
-        return true;
-      }
-      if (c == 0 && (out.reason.empty() || out.reason.rfind("goal box not found", 0) == 0)) {
-        out.segments = segments;
-        out.detection = candidates[c];
-        out.reason = reason;
-      }
-    }
-    return false;
+    attempts.push_back({source, segments, std::move(candidates)});
+    return measureCandidates(attempts.back(), o.minDepressionDeg);
   };
 
   // 1, 2: segments and the goal box side, image-only. The vision pipeline's lines (and its
@@ -248,6 +260,15 @@ ExtractionResult extract(const CameraImage& image, const CameraMatrix& coarse, c
     std::vector<ImageSegment> both = visionSegments;
     both.insert(both.end(), lsd->begin(), lsd->end());
     if (tryCandidates("vision+lsd", both, {})) return out;
+  }
+  // No sample: the same candidates, in the same order, with the long lines allowed nearer the
+  // horizon. Last, so that every first-pass sample stays as it was. The reason kept is the
+  // first pass's.
+  if (o.longLinesFallbackDepressionDeg < o.minDepressionDeg) {
+    const ExtractionResult refusedFirst = out;
+    for (const Attempt& a : attempts)
+      if (measureCandidates(a, o.longLinesFallbackDepressionDeg)) return out;
+    return refusedFirst;
   }
   return out;
 }
