@@ -501,9 +501,11 @@ std::vector<LinesPercept::Line> fitLines(const LineCandidates& candidates, const
         const Merged& b = lines[j];
         if (!b.alive) continue;
         const double tol = 1.5 + 0.3 * std::max(a.expected, b.expected);
+        const double reach = params.mergeReach * tol;
         const Eigen::Vector2d b0 = b.centre + b.tMin * b.dir, b1 = b.centre + b.tMax * b.dir;
         const Eigen::Vector2d a0 = a.centre + a.tMin * a.dir, a1 = a.centre + a.tMax * a.dir;
-        if (distToLine(a, b0) > tol || distToLine(a, b1) > tol || distToLine(b, a0) > tol || distToLine(b, a1) > tol)
+        if (distToLine(a, b0) > reach || distToLine(a, b1) > reach || distToLine(b, a0) > reach ||
+            distToLine(b, a1) > reach)
           continue;
         Merged m = a;
         m.spots.insert(m.spots.end(), b.spots.begin(), b.spots.end());

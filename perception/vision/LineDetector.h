@@ -22,6 +22,11 @@ struct LineParams {
   double circleRadius = 0.75;     // m: short pieces that bend like the centre circle are no lines
   double maxThicknessFactor = 3;  // a white run up to this many expected line widths (+2 px) is a spot
   double mergeWhiteRatio = 0.75;  // of the white test's pairs along a gap two segments are merged across
+  // Two pieces are tried as one line when each one's ends lie within this many times the spot
+  // tolerance of the other's line; the merged fit then keeps every spot within the tolerance.
+  // A piece of three spots extrapolates its direction badly: at 1.0 the goal-box side line of
+  // real frames stayed in pieces shorter than minLengthM (docs/vision/real/README.md).
+  double mergeReach = 1.5;
   double lineWhiteRatio = 0.6;    // of the white test's pairs along a whole line to report it
   int minSpots = 4;               // per reported line
   // A line with fewer spots than this whose pixels do not refine (see refineAcross) must be
