@@ -15,6 +15,9 @@
 #include "controllers/StandController.h"
 #include "perception/RecordedCameraMatrix.h"
 #include "robot/Error.h"
+#include "robot/ForwardKinematics.h"
+#include "robot/Paths.h"
+#include "scenarios/ProgramMetering.h"
 #include "sim/CameraRenderer.h"
 #include "sim/FieldView.h"
 #include "sim/ImageIO.h"
@@ -71,8 +74,18 @@ int renderCommand(const RenderOptions& o) {
   } else {
     sim::CameraRenderer renderer(world.model());
     std::mt19937_64 rng(seed);
+    // Exposed as the robot program meters (its AutoExposureWeighting), with the camera it knows.
+    const ProgramMetering metering(dataPath("config"));
+    const SensorFrame sensors = world.sensors(0);
+    const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
+    const ExposureWeights weights =
+        recorded ? metering(recorded->matrix)
+                 : metering(computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in),
+                            sensors.joints.position,
+                            robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y()),
+                            offsets);
     const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera), res.width,
-                                                 res.height, lighting, camera, world.time(), rng);
+                                                 res.height, lighting, camera, world.time(), rng, weights);
     sim::writePng(out, img);
     exposure = renderer.cameraExposure(world.cameraIndex(0, camera));
   }

@@ -10,6 +10,7 @@
 #include "representations/behavior/ArmMotionRequest.h"
 #include "representations/behavior/BehaviorCommand.h"
 #include "representations/behavior/SpeechRequest.h"
+#include "representations/infrastructure/AutoExposureWeights.h"
 #include "representations/infrastructure/CurrentImage.h"
 #include "representations/infrastructure/FrameHistory.h"
 #include "representations/infrastructure/GameControllerData.h"
@@ -30,10 +31,12 @@ struct TypeList {};
 
 // What crosses between the cadences (docs/architecture.md). Motion to cognition: the state
 // cognition interprets its images with, the calibration the app sets, the game state and the
-// operator's command. Cognition to motion: the behaviour's requests.
+// operator's command. Cognition to motion: the behaviour's requests and the cameras' exposure
+// weights (handed to the backend).
 using MotionToCognition =
     TypeList<FrameHistory, Odometry, MotionInfo, FallState, CameraCalibration, GameState, BehaviorCommand, ChallengeMode>;
-using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationStatus>;
+using CognitionToMotion = TypeList<MotionRequest, HeadMotionRequest, ArmMotionRequest, SpeechRequest, CalibrationStatus,
+                                   AutoExposureWeights>;
 
 template <class T>
 void copyOne(const Blackboard& from, Blackboard& to) {
@@ -180,6 +183,16 @@ bool RobotProgram::cycle(Backend& backend) {
   motion_.update(motionBoard_);
   // The answer goes out before cognition runs: an image never delays it.
   backend.sendRequest(motionBoard_.read<JointRequest>(), motionBoard_.write<LedRequest>());
+  // The cameras' exposure weights as cognition chose them last, to the cameras when they
+  // changed: after the answer (on a NAO each is a USB control transfer).
+  if (motionBoard_.has<AutoExposureWeights>()) {
+    const AutoExposureWeights& weights = motionBoard_.read<AutoExposureWeights>();
+    for (int c = 0; c < kNumCameras; ++c)
+      if (weights.camera[c] != sentExposureWeights_[c]) {
+        backend.setExposureWeights(static_cast<CameraId>(c), weights.camera[c]);
+        sentExposureWeights_[c] = weights.camera[c];
+      }
+  }
   auto last = Clock::now();
   timing_.motionMs = std::chrono::duration<double, std::milli>(last - start).count();
   timing_.cognitionMs.clear();

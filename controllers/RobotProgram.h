@@ -186,6 +186,7 @@ class RobotProgram {
   CycleTiming timing_;
   DebugChannels* debug_ = nullptr;
   CognitionTime cognitionTime_;
+  std::array<ExposureWeights, kNumCameras> sentExposureWeights_;  // the backend's (its default at start)
   std::unique_ptr<Threads> threaded_;
 };
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "robot/CameraImage.h"
+#include "robot/ExposureWeights.h"
 #include "robot/JointRequest.h"
 #include "robot/SensorData.h"
 
@@ -25,6 +26,9 @@ class Backend {
   virtual bool waitForSensors(SensorFrame& frame) = 0;
   virtual bool takeImage(CameraId camera, CameraImage& image) = 0;
   virtual void sendRequest(const JointRequest& joints, const LedRequest& leds) = 0;
+  // The camera's auto exposure meters with these weights from one of its next images on (the
+  // robot program sends them when they change; a camera without them ignores them).
+  virtual void setExposureWeights(CameraId /*camera*/, const ExposureWeights& /*weights*/) {}
   virtual std::string stopReason() const { return {}; }
 };
 

@@ -13,11 +13,14 @@
 #include "perception/vision/BallDetector.h"
 #include "perception/vision/ScanLineRegionizer.h"
 #include "robot/Error.h"
+#include "robot/ForwardKinematics.h"
 #include "robot/OutputFiles.h"
+#include "robot/Paths.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
 #include "sim/SceneBuilder.h"
 #include "sim/World.h"
+#include "scenarios/ProgramMetering.h"
 #include "scenarios/RandomView.h"
 
 namespace nao::sim {
@@ -138,6 +141,7 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
   params.radius = kBallRadius;
 
   BallSamples samples;
+  const ProgramMetering metering(dataPath("config"));  // the exposure as the robot program meters it
   for (int scene = 0; scene < options.scenes; ++scene) {
     const bool hold = scene % 5 == 4;
     const RandomView view = randomView(field, 1.0, rng);
@@ -172,6 +176,9 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
       const CameraResolution res = world.cameraResolution(camera);
       const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
       const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in);
+      const ExposureWeights weights =
+          metering(cm, sensors.joints.position,
+                   robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y()), offsets);
       std::vector<VisibleBall> balls;
       const std::vector<VisibleBall> allBalls = visibleFeatures(world, 0, camera, 1e9).balls;  // for the fits
       for (const VisibleBall& b : visibleFeatures(world, 0, camera, 6.0).balls)
@@ -186,7 +193,7 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
         std::mt19937_64 noiseRng(options.seed * 1000003 + scene * 17 + static_cast<int>(camera) * 5 + k);
         renderer.resetCameraSensors();  // each sample settled in its own light
         const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera),
-                                                     res.width, res.height, lighting, camera, 0, noiseRng);
+                                                     res.width, res.height, lighting, camera, 0, noiseRng, weights);
         ++samples.frames;
         auto add = [&](const cv::Mat1f& patch, bool isBall) {
           samples.patches.push_back(patch);

@@ -50,11 +50,11 @@ ChallengeSession::ChallengeSession(const ChallengeSetup& setup) : setup_(setup),
   backend_ = std::make_unique<SimBackend>(*world_, 0, true);
   headId_ = backend_->robotInfo().headId;
   renderer_ = std::make_unique<CameraRenderer>(world_->model());
-  backend_->setImageSource([this](CameraId cam, double time) {
+  backend_->setImageSource([this](CameraId cam, double time, const ExposureWeights& metering) {
     if (shield_) return shieldFrame(*world_, cam, time);
     const CameraResolution res = world_->cameraResolution(cam);
     return renderer_->renderImage(world_->model(), world_->data(), world_->cameraIndex(0, cam), res.width, res.height,
-                                  setup_.lighting, cam, time, noiseRng_);
+                                  setup_.lighting, cam, time, noiseRng_, metering);
   });
   // The robot program as on a robot that has never been calibrated: no stored offsets.
   RobotProgramConfig config;

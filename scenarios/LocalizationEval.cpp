@@ -160,13 +160,13 @@ nlohmann::json runLocalizationTrial(const LocalizationEvalOptions& o, std::uint6
   std::mt19937_64 noiseRng(seed ^ 0x9e3779b97f4a7c15ULL);
   SimBackend backend(world, 0, true);
   if (o.oracle) {
-    backend.setImageSource([&](CameraId cam, double) { return oracleImage(world, 0, cam); });
+    backend.setImageSource([&](CameraId cam, double, const ExposureWeights&) { return oracleImage(world, 0, cam); });
   } else {
     renderer.emplace(world.model());
-    backend.setImageSource([&](CameraId cam, double time) {
+    backend.setImageSource([&](CameraId cam, double time, const ExposureWeights& metering) {
       const CameraResolution res = world.cameraResolution(cam);
       return renderer->renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width, res.height,
-                                   lighting, cam, time, noiseRng);
+                                   lighting, cam, time, noiseRng, metering);
     });
   }
   RobotProgramConfig config;

@@ -277,16 +277,17 @@ MatchResult runMatch(const MatchOptions& o) {
     p.present = !sr || sr->present;
     p.scripted = sr && !sr->program;  // a prop of the referee's: its motion from the script, no cameras
     if (!p.scripted && oracle)
-      p.backend->setImageSource([&world, &wall, r](CameraId cam, double) {
+      p.backend->setImageSource([&world, &wall, r](CameraId cam, double, const ExposureWeights&) {
         const Stopwatch watch(wall.images);
         return oracleImage(world, r, cam);
       });
     else if (!p.scripted)
-      p.backend->setImageSource([&world, &renderer, &o, &noise, &wall, &lastImages, pictures, r](CameraId cam, double time) {
+      p.backend->setImageSource([&world, &renderer, &o, &noise, &wall, &lastImages, pictures, r](CameraId cam, double time,
+                                                                                                 const ExposureWeights& metering) {
         const Stopwatch watch(wall.images);
         const CameraResolution res = world.cameraResolution(cam);
         CameraImage image = renderer->renderImage(world.model(), world.data(), world.cameraIndex(r, cam), res.width,
-                                                  res.height, o.lighting, cam, time, noise);
+                                                  res.height, o.lighting, cam, time, noise, metering);
         if (pictures) lastImages[static_cast<std::size_t>(r)][cam == CameraId::Top ? 0 : 1] = image;
         return image;
       });

@@ -68,7 +68,7 @@ PerceptionBenchResult benchPerception(const PerceptionBenchOptions& options) {
     const SensorFrame s = world.sensors(0);
     matrices.push_back(computeCameraMatrix(s.joints.position, s.inertial.angle, options.camera, CameraCalibration{}, in));
     images.push_back(renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, options.camera), res.width,
-                                          res.height, lightings[f % lightings.size()], options.camera, 0, rng));
+                                          res.height, lightings[f % lightings.size()], options.camera, 0, rng, ExposureWeights{}));
     if (options.progress) options.progress("render", f + 1, options.frames);
   }
 

@@ -17,6 +17,7 @@
 #include "perception/vision/VisionPipeline.h"
 #include "robot/Error.h"
 #include "robot/OutputFiles.h"
+#include "robot/ForwardKinematics.h"
 #include "robot/Paths.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
@@ -24,6 +25,7 @@
 #include "sim/OracleCamera.h"
 #include "sim/SceneBuilder.h"
 #include "sim/World.h"
+#include "scenarios/ProgramMetering.h"
 #include "scenarios/RandomView.h"
 
 namespace nao::sim {
@@ -521,6 +523,8 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
   DebugChannels& debug = options.debug ? *options.debug : DebugChannels::none();
   CameraPipelineConfig pipelineConfig;
   pipelineConfig.debug = options.debug;
+  // The exposure as the robot program would meter this view (its AutoExposureWeighting).
+  const ProgramMetering metering(dataPath("config"));
   CameraPipeline pipelines[kNumCameras] = {CameraPipeline(CameraId::Top, options.field, pipelineConfig),
                                            CameraPipeline(CameraId::Bottom, options.field, pipelineConfig)};
   const FieldModel& field = firstWorld.field();
@@ -578,6 +582,9 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
       const CameraResolution res = world.cameraResolution(camera);
       const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
       const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in);
+      const ExposureWeights weights =
+          metering(cm, sensors.joints.position,
+                   robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y()), offsets);
       const FrameTruth truth = computeTruth(world, camera);
       const OracleView sight = oracleView(world, 0, camera);
       for (const Lighting& lighting : lightings) {
@@ -595,7 +602,7 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
           // result does not depend on which trials ran before, so chunks merge exactly).
           renderer->resetCameraSensors();
           img = renderer->renderImage(world.model(), world.data(), world.cameraIndex(0, camera), res.width, res.height,
-                                     lighting, camera, 0, noiseRng);
+                                     lighting, camera, 0, noiseRng, weights);
           CameraPipeline& pipeline = pipelines[static_cast<int>(camera)];
           pipeline.process(img, cm);
           r = pipeline.visionResult();

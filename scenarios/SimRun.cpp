@@ -74,11 +74,11 @@ SimRunResult runSim(const SimRunOptions& options) {
   SimBackend backend(world, 0, true);
   if (options.cameras) {
     renderer = std::make_unique<CameraRenderer>(world.model());
-    backend.setImageSource([&](CameraId cam, double time) {
+    backend.setImageSource([&](CameraId cam, double time, const ExposureWeights& metering) {
       const auto t0 = Clock::now();
       const CameraResolution res = world.cameraResolution(cam);
       CameraImage img = renderer->renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width,
-                                              res.height, options.lighting, cam, time, noiseRng);
+                                              res.height, options.lighting, cam, time, noiseRng, metering);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
       (cam == CameraId::Top ? result.renderMsTop : result.renderMsBottom).push_back(ms);
       (cam == CameraId::Top ? result.renderStagesTop : result.renderStagesBottom).push_back(renderer->lastStages());

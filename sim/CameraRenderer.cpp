@@ -186,10 +186,11 @@ cv::Mat CameraRenderer::renderRgb(mjModel* m, mjData* d, int mjCameraId, int wid
 
 CameraImage CameraRenderer::renderImage(mjModel* m, mjData* d, int mjCameraId, int width, int height,
                                         const Lighting& lighting, CameraId camera, double timestamp,
-                                        std::mt19937_64& rng) {
+                                        std::mt19937_64& rng, const ExposureWeights& metering) {
   if (width % 2 != 0) throw Error(kWhere, "YUYV needs an even image width, got " + std::to_string(width));
   Impl& I = *impl_;
   CameraSensor& model = I.cameras[mjCameraId];
+  model.setMeteringWeights(metering);
   if (model.needsSettling(lighting.camera)) {
     Eigen::Vector3d gains = Eigen::Vector3d::Ones();
     for (int look = 0; look < 3; ++look) {

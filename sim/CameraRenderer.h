@@ -11,6 +11,7 @@
 #include <string>
 
 #include "robot/CameraImage.h"
+#include "robot/ExposureWeights.h"
 #include "sim/Lighting.h"
 
 struct mjModel_;
@@ -51,9 +52,10 @@ class CameraRenderer {
   // renderRgb through the NAO camera's model (lighting.camera, sim/CameraSensor.h; its loops keep
   // their state per mjCameraId) into YUYV (BT.601 full range, U/V averaged over each pixel pair),
   // with the camera's rotation from d for the rolling shutter and the motion blur. The noise comes
-  // from rng: the same rng state and the same image history give the same bytes.
+  // from rng: the same rng state and the same image history give the same bytes. The auto
+  // exposure meters with `metering` (the robot program's weights; default: the whole image).
   CameraImage renderImage(mjModel_* m, mjData_* d, int mjCameraId, int width, int height, const Lighting& lighting,
-                          CameraId camera, double timestamp, std::mt19937_64& rng);
+                          CameraId camera, double timestamp, std::mt19937_64& rng, const ExposureWeights& metering);
 
   // Forgets the cameras' exposure and white-balance state: the next image of each camera starts
   // settled in its light (a new trial in another light, not a step in the light).

@@ -179,6 +179,9 @@ CameraSensor::Metering CameraSensor::meter(const cv::Mat& rgb, const Eigen::Vect
   const Eigen::Vector3f toScene = renderedGains.cwiseInverse().cast<float>();
   double sumY = 0, sumScene = 0;
   int n = 0, clipped = 0;
+  // The metered luminance per cell of the exposure weights' grid (robot/ExposureWeights.h).
+  std::array<double, ExposureWeights::kRows * ExposureWeights::kCols> cellY{};
+  std::array<int, ExposureWeights::kRows * ExposureWeights::kCols> cellN{};
   struct Candidate {
     float r, g, b, y;
   };
@@ -186,12 +189,17 @@ CameraSensor::Metering CameraSensor::meter(const cv::Mat& rgb, const Eigen::Vect
   for (int r = 2; r < rgb.rows; r += 4) {
     const std::uint8_t* row = rgb.ptr<std::uint8_t>(r);
     const float* vig = vignette_.data() + static_cast<std::size_t>(r) * rgb.cols;
+    const int cellRow = r * ExposureWeights::kRows / rgb.rows * ExposureWeights::kCols;
     for (int c = 2; c < rgb.cols; c += 4) {
       const std::uint8_t* px = row + 3 * c;
       const float v = vig[c];
-      sumY += 0.299f * clamp255(px[0] * scale[0]) * v + 0.587f * clamp255(px[1] * scale[1]) * v +
-              0.114f * clamp255(px[2] * scale[2]) * v;
+      const float yOut = 0.299f * clamp255(px[0] * scale[0]) * v + 0.587f * clamp255(px[1] * scale[1]) * v +
+                         0.114f * clamp255(px[2] * scale[2]) * v;
+      sumY += yOut;
       ++n;
+      const int cell = cellRow + c * ExposureWeights::kCols / rgb.cols;
+      cellY[static_cast<std::size_t>(cell)] += yOut;
+      ++cellN[static_cast<std::size_t>(cell)];
       const float R = px[0] * toScene[0], G = px[1] * toScene[1], B = px[2] * toScene[2];
       const float y = 0.299f * R + 0.587f * G + 0.114f * B;
       sumScene += y;
@@ -206,6 +214,15 @@ CameraSensor::Metering CameraSensor::meter(const cv::Mat& rgb, const Eigen::Vect
   }
   if (n == 0) return m;
   m.luma = sumY / n;
+  if (!weights_.uniform()) {  // the cells' mean luminances, weighted
+    double weighted = 0, weightSum = 0;
+    for (std::size_t k = 0; k < cellY.size(); ++k)
+      if (cellN[k] > 0) {
+        weighted += weights_.cell[k] * cellY[k] / cellN[k];
+        weightSum += weights_.cell[k];
+      }
+    if (weightSum > 0) m.luma = weighted / weightSum;
+  }
   m.clipped = static_cast<double>(clipped) / n;
   const double meanScene = sumScene / n;
   Eigen::Vector3d white = Eigen::Vector3d::Zero();

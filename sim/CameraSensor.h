@@ -15,6 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include "robot/CameraImage.h"
+#include "robot/ExposureWeights.h"
 
 namespace nao::sim {
 
@@ -27,7 +28,7 @@ struct CameraSensorParams {
   bool motion = false;  // rolling shutter and motion blur (off until the vision compensates them)
 
   // Auto exposure: brightness b = exposure / nominalExposureMs * gain scales the rendered scene.
-  double targetLuma = 85;         // metered mean Y the loop drives the image to (whites just below clipping)
+  double targetLuma = 75;         // metered mean Y the loop drives the image to (whites just below clipping)
   double nominalExposureMs = 10;  // the exposure at which the image is the rendered scene
   double minExposureMs = 0.5;
   double maxExposureMs = 30;      // then the gain rises (and the noise with it)
@@ -80,6 +81,9 @@ class CameraSensor {
                       const Eigen::Vector2d& imageVelocity, CameraId camera, double timestamp, std::mt19937_64& rng);
 
   const CameraExposure& exposure() const { return state_; }
+  // Where the auto exposure meters from the next metering on (the robot program's choice; the
+  // default meters the whole image evenly). White balance and clipping look at the whole image.
+  void setMeteringWeights(const ExposureWeights& weights) { weights_ = weights; }
 
  private:
   struct Metering {
@@ -96,6 +100,7 @@ class CameraSensor {
   const std::vector<float>& vignetteMap(int width, int height, double corner);
 
   CameraExposure state_;
+  ExposureWeights weights_;
   bool settled_ = false;
   std::deque<Metering> pending_;
   std::vector<float> vignette_;

@@ -37,7 +37,7 @@ bool SimBackend::waitForSensors(SensorFrame& frame) {
     for (int c = 0; c < kNumCameras; ++c) {
       if (now + 1e-9 < nextDue_[c]) continue;
       const auto camera = static_cast<CameraId>(c);
-      CameraImage image = imageSource_(camera, now);
+      CameraImage image = imageSource_(camera, now, exposureWeights_[c]);
       image.camera = camera;
       image.timestamp = now;
       pending_[c] = std::move(image);

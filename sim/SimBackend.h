@@ -20,8 +20,9 @@ class World;
 
 class SimBackend : public Backend {
  public:
-  // Renders camera `camera` of this backend's robot at world time `time`.
-  using ImageSource = std::function<CameraImage(CameraId camera, double time)>;
+  // Renders camera `camera` of this backend's robot at world time `time`, its auto exposure
+  // metering with `weights` (the robot program's, robot/ExposureWeights.h).
+  using ImageSource = std::function<CameraImage(CameraId camera, double time, const ExposureWeights& weights)>;
 
   SimBackend(World& world, int robot, bool ownsStepping = true);
 
@@ -30,6 +31,10 @@ class SimBackend : public Backend {
   bool waitForSensors(SensorFrame& frame) override;
   bool takeImage(CameraId camera, CameraImage& image) override;
   void sendRequest(const JointRequest& joints, const LedRequest& leds) override;
+  void setExposureWeights(CameraId camera, const ExposureWeights& weights) override {
+    exposureWeights_[static_cast<int>(camera)] = weights;
+  }
+  const ExposureWeights& exposureWeights(CameraId camera) const { return exposureWeights_[static_cast<int>(camera)]; }
   std::string stopReason() const override { return stopReason_; }
 
   void setImageSource(ImageSource source) { imageSource_ = std::move(source); }
@@ -49,6 +54,7 @@ class SimBackend : public Backend {
   std::uint64_t cycle_ = 0;
   ImageSource imageSource_;
   std::array<double, kNumCameras> nextDue_{};
+  std::array<ExposureWeights, kNumCameras> exposureWeights_;
   std::array<std::optional<CameraImage>, kNumCameras> pending_;
   JointRequest request_{};
   LedRequest leds_{};

@@ -26,7 +26,9 @@
 #include "perception/Geometry.h"
 #include "perception/vision/BallDetector.h"
 #include "perception/vision/VisionPipeline.h"
+#include "robot/ForwardKinematics.h"
 #include "robot/Paths.h"
+#include "scenarios/ProgramMetering.h"
 #include "sim/CameraRenderer.h"
 #include "sim/GroundTruth.h"
 #include "sim/ImageIO.h"
@@ -262,12 +264,17 @@ class BallScene : public ::testing::Test {
     world_->placeBall(0, Eigen::Vector3d(ball.x(), ball.y(), kBallR));
     const sim::Lighting lighting = sim::Lighting::parse(preset, dataPath("config/lighting.json"));
     const sim::CameraResolution res = world_->cameraResolution(camera);
-    renderer_->resetCameraSensors();  // a settled camera at each placed view, not a jump from the last
-    image_ = renderer_->renderImage(world_->model(), world_->data(), world_->cameraIndex(0, camera), res.width,
-                                    res.height, lighting, camera, 0, rng_);
     const SensorFrame s = world_->sensors(0);
     cm_ = computeCameraMatrix(s.joints.position, s.inertial.angle, camera, CameraCalibration{},
                               CameraIntrinsics::fromFovY(res.width, res.height, world_->cameraFovY()));
+    // Exposed as the robot program meters this view (its AutoExposureWeighting).
+    static const ProgramMetering metering(dataPath("config"));
+    const ExposureWeights weights =
+        metering(cm_, s.joints.position, robotToTorso(s.joints.position, s.inertial.angle.x(), s.inertial.angle.y()),
+                 CameraCalibration{});
+    renderer_->resetCameraSensors();  // a settled camera at each placed view, not a jump from the last
+    image_ = renderer_->renderImage(world_->model(), world_->data(), world_->cameraIndex(0, camera), res.width,
+                                    res.height, lighting, camera, 0, rng_, weights);
     return runVision(image_, cm_);
   }
 

@@ -83,7 +83,7 @@ struct ViewFixture {
     }
     const sim::CameraResolution res = world.cameraResolution(v.camera);
     return renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, v.camera), res.width, res.height,
-                                lighting, v.camera, world.time(), rng);
+                                lighting, v.camera, world.time(), rng, ExposureWeights{});
   }
 };
 

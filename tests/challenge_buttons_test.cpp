@@ -62,7 +62,8 @@ TEST(ChallengeButtons, TheRefereesButtonsOnTheSimulatedRobot) {
   world.placeRobot(0, start, StandController::standPosture());
   sim::SimBackend backend(world, 0, true);
   // The camera shield on: dark frames (cognition, and so the behaviour, runs per frame).
-  backend.setImageSource([&](CameraId cam, double time) { return sim::shieldFrame(world, cam, time); });
+  backend.setImageSource(
+      [&](CameraId cam, double time, const ExposureWeights&) { return sim::shieldFrame(world, cam, time); });
   RobotProgramConfig config;
   config.field = field;
   RobotProgram program(config);

@@ -42,10 +42,10 @@ TEST(Cognition, TheRobotProgramSeesTheFieldLinesWhereTheyAre) {
   sim::CameraRenderer renderer(world.model());
   std::mt19937_64 rng(3);
   const sim::Lighting lighting = sim::Lighting::parse("default", dataPath("config/lighting.json"));
-  backend.setImageSource([&](CameraId cam, double time) {
+  backend.setImageSource([&](CameraId cam, double time, const ExposureWeights& metering) {
     const sim::CameraResolution res = world.cameraResolution(cam);
     return renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, cam), res.width, res.height,
-                                lighting, cam, time, rng);
+                                lighting, cam, time, rng, metering);
   });
   RobotProgramConfig config;
   config.field = field;
@@ -80,6 +80,15 @@ TEST(Cognition, TheRobotProgramSeesTheFieldLinesWhereTheyAre) {
   EXPECT_GE(program.cognitionRuns()[1], 40);
   EXPECT_GE(perceptSets, 40);
   EXPECT_GT(lines, 40) << "the robot program saw hardly any lines";
+  // Where each camera meters (AutoExposureWeighting) went from the program to the backend, which
+  // renders with it: looking across the field from the side line, the top camera's upper cells
+  // see the hall beyond the far side line, its lower ones the near field.
+  const ExposureWeights& top = backend.exposureWeights(CameraId::Top);
+  EXPECT_FALSE(top.uniform());
+  EXPECT_EQ(top.at(0, 0), 0);
+  EXPECT_EQ(top.at(0, 3), 0);
+  EXPECT_EQ(top.at(3, 1), 15);
+  EXPECT_EQ(top.at(3, 2), 15);
   EXPECT_LE(offLines, lines / 20) << offLines << " of " << 2 * lines << " line ends off every field line";
 }
 

@@ -141,7 +141,7 @@ class SimulatedVision : public ::testing::Test {
         const auto res = world_->cameraResolution(cam);
         renderer_->resetCameraSensors();  // each pose a settled camera, not a jump from the last
         const CameraImage img = renderer_->renderImage(world_->model(), world_->data(), world_->cameraIndex(0, cam),
-                                                       res.width, res.height, light, cam, 0, noiseRng);
+                                                       res.width, res.height, light, cam, 0, noiseRng, ExposureWeights{});
         const SensorFrame sensors = world_->sensors(0);
         const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, cam,
                                                     CameraCalibration{},

@@ -275,7 +275,7 @@ TEST(LinesSimulated, CalibrationViewMatchesTheFieldModel) {
     SCOPED_TRACE(preset);
     const sim::Lighting lighting = sim::Lighting::parse(preset, dataPath("config/lighting.json"));
     const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, CameraId::Top), 640, 480,
-                                                 lighting, CameraId::Top, 0, rng);
+                                                 lighting, CameraId::Top, 0, rng, ExposureWeights{});
     const SensorFrame s = world.sensors(0);
     const CameraMatrix cm = computeCameraMatrix(s.joints.position, s.inertial.angle, CameraId::Top, CameraCalibration{},
                                                 CameraIntrinsics::nominal(CameraId::Top));

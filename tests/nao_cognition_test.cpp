@@ -164,6 +164,14 @@ TEST(NaoCognition, TheSimulatedNaoThroughLolaAndTheCameraSocketLocalizesAndArriv
     EXPECT_GE(sent, (quick() ? 0.3 : 0.8) * 30 * seconds) << camera;
     EXPECT_GE(peer["program"]["images_processed"][camera].get<double>(), 0.9 * sent) << camera;
   }
+  // The program chose where each camera meters (AutoExposureWeighting) and the NAO backend sent
+  // it over the camera sockets, which the peer renders with, as the sim backend does: the head
+  // scans, so the weights change again and again, most of the time uneven (the hall beyond the
+  // near field in view), all equal while it looks down at the near field only.
+  const nlohmann::json& top = peer["exposure_weights"]["top"];
+  EXPECT_GE(top["messages"].get<int>(), 10) << top.dump();
+  EXPECT_GE(top["uneven"].get<int>(), top["messages"].get<int>() / 2) << top.dump();
+  EXPECT_EQ(top["last"].size(), 16u) << top.dump();
   // The belief against the truth the program never saw.
   EXPECT_EQ(peer["localization_valid_fraction"], 1.0);
   EXPECT_LT(peer["localization_error_m"]["median"].get<double>(), 0.05) << peer.dump();

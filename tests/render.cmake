@@ -7,3 +7,4 @@ nao_add_test(gl_context_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/gl_context_test.c
 add_dependencies(gl_context_test nao-soccer)
 nao_add_test(camera_sensor_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/camera_sensor_test.cpp LIBS nao_sim)
 nao_add_test(venue_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/venue_test.cpp LIBS nao_scenarios)
+nao_add_test(exposure_weighting_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/exposure_weighting_test.cpp LIBS nao_scenarios)

@@ -156,7 +156,7 @@ TEST(RenderTest, SameSeedSameBytesOtherSeedOnlyNoise) {
   // Each image from a settled camera (the exposure loop would otherwise move between them).
   auto shoot = [&](std::mt19937_64& rng, CameraId id) {
     renderer.resetCameraSensors();
-    return renderer.renderImage(scene.m, scene.d, scene.camera, 320, 240, lighting, id, 1.5, rng);
+    return renderer.renderImage(scene.m, scene.d, scene.camera, 320, 240, lighting, id, 1.5, rng, ExposureWeights{});
   };
   std::mt19937_64 a(7), b(7), c(8);
   const CameraImage ia = shoot(a, CameraId::Bottom), ib = shoot(b, CameraId::Bottom), ic = shoot(c, CameraId::Bottom);
@@ -244,7 +244,7 @@ TEST(RenderTest, DarkIsDarkerThanBrightUnlessTheExposureSettles) {
   auto mean = [&](const std::string& preset) {
     renderer.resetCameraSensors();
     return meanY(renderer.renderImage(scene.m, scene.d, scene.camera, 320, 240, Lighting::parse(preset, presets()),
-                                      CameraId::Top, 0, rng));
+                                      CameraId::Top, 0, rng, ExposureWeights{}));
   };
   // The scene itself (no auto exposure):
   const double dark = mean("dark,ae=off"), normal = mean("default,ae=off"), bright = mean("bright,ae=off");

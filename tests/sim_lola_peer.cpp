@@ -38,6 +38,7 @@
 #include "perception/FieldDimensions.h"
 #include "robot/JointRequest.h"
 #include "robot/math/Pose2.h"
+#include "robot/nao/SocketCamera.h"
 #include "sim/CameraRenderer.h"
 #include "sim/Lighting.h"
 #include "sim/SimBackend.h"
@@ -75,6 +76,9 @@ struct CameraLink {
   int listener = -1;
   std::array<int, 2> fd{-1, -1};
   std::array<long, 2> sent{0, 0};
+  std::array<nao::ExposureWeights, 2> weights;  // what each camera's program side last sent
+  std::array<long, 2> weightMessages{0, 0};
+  std::array<long, 2> unevenMessages{0, 0};  // of them, weights not all equal
 
   void acceptPending() {
     for (;;) {
@@ -92,6 +96,25 @@ struct CameraLink {
       }
       if (fd[hello[7]] >= 0) ::close(fd[hello[7]]);
       fd[hello[7]] = c;
+    }
+  }
+
+  // The auto exposure weights each camera's program side sent ("NAOW" + 16 cells), newest kept.
+  void readWeights() {
+    for (int cam = 0; cam < 2; ++cam) {
+      std::uint8_t m[nao::kSocketWeightsSize];
+      while (fd[cam] >= 0 && ::recv(fd[cam], m, sizeof m, MSG_PEEK | MSG_DONTWAIT) == static_cast<ssize_t>(sizeof m)) {
+        (void)::recv(fd[cam], m, sizeof m, MSG_DONTWAIT);
+        if (std::memcmp(m, nao::kSocketWeightsMagic, 4) != 0) {
+          check(false, "a camera sent something that is not exposure weights");
+          ::close(fd[cam]);
+          fd[cam] = -1;
+          break;
+        }
+        std::memcpy(weights[cam].cell.data(), m + 4, weights[cam].cell.size());
+        ++weightMessages[cam];
+        unevenMessages[cam] += !weights[cam].uniform();
+      }
     }
   }
 
@@ -150,11 +173,11 @@ class RenderWorker {
 
   // Waits up to maxWaitS for the worker; false (the frame is dropped) when it is still busy.
   bool submit(const mjModel* m, const mjData* d, CameraId camera, int mjCamera, int width, int height, double stamp,
-              double maxWaitS) {
+              const nao::ExposureWeights& metering, double maxWaitS) {
     std::unique_lock<std::mutex> lock(mutex_);
     if (!wake_.wait_for(lock, std::chrono::duration<double>(maxWaitS), [this] { return !job_ || stop_; })) return false;
     mj_copyData(data_, m, d);
-    job_ = Job{camera, mjCamera, width, height, stamp};
+    job_ = Job{camera, mjCamera, width, height, stamp, metering};
     wake_.notify_all();
     return true;
   }
@@ -173,6 +196,7 @@ class RenderWorker {
     CameraId camera;
     int mjCamera, width, height;
     double stamp;
+    nao::ExposureWeights metering;
   };
   void loop() {
     // The renders at normal priority, below the LoLA loop (SCHED_FIFO where allowed): they take what is left.
@@ -196,7 +220,7 @@ class RenderWorker {
       try {
         if (!renderer) renderer = std::make_unique<nao::sim::CameraRenderer>(model_);
         image = renderer->renderImage(model_, data_, job.mjCamera, job.width, job.height, lighting_, job.camera,
-                                      job.stamp, rng_);
+                                      job.stamp, rng_, job.metering);
         image.camera = job.camera;
         image.timestamp = job.stamp;
       } catch (const std::exception& e) {
@@ -367,13 +391,14 @@ int runPeer(const Options& o) {
       check(false, fmt("no answer to the packet at %.2f s simulated", frame.time));
     }
     // Frames of this state, stamped with its packet's time on the program's clock; sent when rendered.
+    cameras.readWeights();
     for (CameraId cam : {CameraId::Top, CameraId::Bottom}) {
       double& due = nextDue[static_cast<int>(cam)];
       if (frame.time + 1e-9 < due) continue;
       due += kCameraPeriod;
       const sim::CameraResolution res = world.cameraResolution(cam);
       if (!render.submit(world.model(), world.data(), cam, world.cameraIndex(0, cam), res.width, res.height, lolaTime,
-                         0.03))
+                         cameras.weights[static_cast<int>(cam)], 0.03))
         ++framesDropped;
     }
     for (const CameraImage& image : render.done()) cameras.send(image, image.timestamp);
@@ -418,6 +443,12 @@ int runPeer(const Options& o) {
                                        {"max", percentile(latencyMs, 1.0)}}},
                         {"peer_behind", behind},
                         {"frames_sent", {{"top", cameras.sent[0]}, {"bottom", cameras.sent[1]}}},
+                        // The program's auto exposure weights as they came over the camera sockets.
+                        {"exposure_weights",
+                         {{"top", {{"messages", cameras.weightMessages[0]}, {"uneven", cameras.unevenMessages[0]},
+                                   {"last", cameras.weights[0].cell}}},
+                          {"bottom", {{"messages", cameras.weightMessages[1]}, {"uneven", cameras.unevenMessages[1]},
+                                      {"last", cameras.weights[1].cell}}}}},
                         {"frames_dropped", framesDropped},
                         {"work_dir", dir}};
   std::ifstream runFile(runJson);

@@ -181,3 +181,50 @@ TEST(SocketCamera, ABrokenFrameIsNamedAndTheConnectionMadeAgain) {
 
 }  // namespace
 }  // namespace nao
+
+namespace nao {
+namespace {
+
+// The exposure weights the program chooses go the other way, to the peer that renders: after
+// the hello when set before, on each change, and again on a new connection.
+TEST(SocketCamera, SendsTheProgramsExposureWeightsOnEachChangeAndAfterAReconnect) {
+  const std::string path = socketPath("w.sock").string();
+  const int listener = listenOn(path);
+  Log log;
+  SocketCamera camera(CameraId::Top, path, log.sink());
+  ExposureWeights w;
+  for (int k = 0; k < 16; ++k) w.cell[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(k < 4 ? 0 : 15);
+  camera.setExposureWeights(w);  // before the peer took the connection
+  auto readWeights = [](int fd, ExposureWeights& out) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 3000) <= 0) return false;
+    std::uint8_t m[kSocketWeightsSize];
+    if (::recv(fd, m, sizeof m, MSG_WAITALL) != static_cast<ssize_t>(sizeof m)) return false;
+    if (std::memcmp(m, "NAOW", 4) != 0) return false;
+    std::memcpy(out.cell.data(), m + 4, 16);
+    return true;
+  };
+  const int c = acceptCamera(listener, 0);
+  ASSERT_GE(c, 0);
+  ExposureWeights got;
+  ASSERT_TRUE(readWeights(c, got));
+  EXPECT_EQ(got, w);
+  ExposureWeights w2 = w;
+  w2.cell[0] = 7;
+  camera.setExposureWeights(w2);
+  ASSERT_TRUE(readWeights(c, got));
+  EXPECT_EQ(got, w2);
+  camera.setExposureWeights(w2);  // unchanged: nothing sent
+  pollfd p{c, POLLIN, 0};
+  EXPECT_EQ(::poll(&p, 1, 100), 0);
+  ::close(c);  // the peer goes away; the camera connects again and says them again
+  const int again = acceptCamera(listener, 0);
+  ASSERT_GE(again, 0);
+  ASSERT_TRUE(readWeights(again, got));
+  EXPECT_EQ(got, w2);
+  ::close(again);
+  ::close(listener);
+}
+
+}  // namespace
+}  // namespace nao

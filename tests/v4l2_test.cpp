@@ -6,6 +6,8 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <linux/usb/video.h>
+#include <linux/uvcvideo.h>
 #include <linux/videodev2.h>
 #include <stdlib.h>
 #include <sys/mman.h>
@@ -35,6 +37,7 @@ class FakeDriver : public V4l2Device {
   std::uint32_t padding = 0;  // bytes per line beyond width * 2
   std::uint32_t maxBuffers = 8;
   bool flipControls = true;
+  bool naoExtensionUnit = true;  // the NAO camera's UVC extension unit (auto exposure weights)
   struct Control {
     int min, max, step, value;
   };
@@ -57,6 +60,7 @@ class FakeDriver : public V4l2Device {
   bool streaming = false;
   v4l2_fract timePerFrame{};
   std::vector<std::pair<std::uint32_t, int>> setControls;
+  std::vector<std::vector<std::uint8_t>> exposureWeightWrites;  // selector 9's payloads, in order
 
   // The frames the "sensor" captured: fills the first queued buffer (false if none queued).
   bool capture(std::uint8_t seed, double timestamp, std::uint32_t flags = 0, std::uint32_t bytesused = 0) {
@@ -237,6 +241,14 @@ class FakeDriver : public V4l2Device {
         auto it = controls.find(c->id);
         if (it == controls.end()) return errno = EINVAL, -1;
         c->value = it->second.value;
+        return 0;
+      }
+      case UVCIOC_CTRL_QUERY: {
+        auto* q = static_cast<uvc_xu_control_query*>(arg);
+        if (!naoExtensionUnit) return errno = ENOENT, -1;  // uvcvideo: no such unit
+        if (q->unit != 3 || q->selector != 9 || q->query != UVC_SET_CUR || q->size != 17) return errno = EINVAL, -1;
+        exposureWeightWrites.emplace_back(q->data, q->data + q->size);
+        calls.push_back("XU_SET_CUR");
         return 0;
       }
     }
@@ -487,6 +499,60 @@ TEST_F(V4l2, DropsDamagedFrames) {
   EXPECT_EQ(driver->queued(), 4u);
   ASSERT_TRUE(driver->capture(4, 0.1));
   EXPECT_TRUE(camera->grab(img, 0.1));
+}
+
+// The robot program's auto exposure weights reach the NAO camera's extension unit: window the
+// whole image, 16 weights two to a byte, row-major, even cell low; written again after a
+// reopen; a camera without the unit is logged once and left alone.
+TEST(NaoExposureWeights, PayloadHoldsTheWindowAndTheCellsTwoToAByte) {
+  ExposureWeights w;
+  for (int k = 0; k < 16; ++k) w.cell[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(k);
+  const auto p = naoExposureWeightsPayload(w, 640, 480);
+  const std::array<std::uint8_t, 17> expected{1,    0,    0,    0,    0,    0x02, 0x80, 0x01, 0xe0,
+                                              0x10, 0x32, 0x54, 0x76, 0x98, 0xba, 0xdc, 0xfe};
+  EXPECT_EQ(p, expected);
+  w.cell.fill(200);  // out of range: the most a cell can weigh
+  EXPECT_EQ(naoExposureWeightsPayload(w, 320, 240)[9], 0xff);
+  EXPECT_EQ(naoExposureWeightsPayload(w, 320, 240)[6], 0x40);
+}
+
+TEST_F(V4l2, WritesTheAutoExposureWeightsAndAgainAfterAReopen) {
+  make();
+  ASSERT_TRUE(camera->open(0));
+  EXPECT_TRUE(driver->exposureWeightWrites.empty()) << "the camera's own metering until the program chooses";
+  ExposureWeights w;
+  w.cell.fill(0);
+  w.cell[12] = w.cell[13] = w.cell[14] = w.cell[15] = 15;  // the bottom row only
+  camera->setExposureWeights(w);
+  ASSERT_EQ(driver->exposureWeightWrites.size(), 1u);
+  const std::vector<std::uint8_t> expected{1, 0, 0, 0, 0, 0x02, 0x80, 0x01, 0xe0, 0, 0, 0, 0, 0, 0, 0xff, 0xff};
+  EXPECT_EQ(driver->exposureWeightWrites[0], expected);
+  camera->setExposureWeights(w);  // unchanged: nothing written
+  EXPECT_EQ(driver->exposureWeightWrites.size(), 1u);
+  driver->dqbufErrno = EIO;
+  ASSERT_TRUE(driver->capture(1, 0.03));
+  CameraImage img;
+  EXPECT_FALSE(camera->grab(img, 0.04));  // reopens
+  ASSERT_EQ(driver->exposureWeightWrites.size(), 2u);
+  EXPECT_EQ(driver->exposureWeightWrites[1], expected);
+}
+
+TEST_F(V4l2, ACameraWithoutTheNaoExtensionUnitKeepsItsOwnMetering) {
+  driver->naoExtensionUnit = false;
+  make();
+  ASSERT_TRUE(camera->open(0));
+  ExposureWeights w;
+  w.cell.fill(3);
+  camera->setExposureWeights(w);
+  w.cell.fill(4);
+  camera->setExposureWeights(w);
+  int lines = 0;
+  for (const auto& l : log) lines += l.find("setting the auto exposure weights failed") != std::string::npos;
+  EXPECT_EQ(lines, 1);
+  EXPECT_TRUE(logged("camera top (/dev/video-top): setting the auto exposure weights failed"));
+  CameraImage img;
+  ASSERT_TRUE(driver->capture(1, 0.03));
+  EXPECT_TRUE(camera->grab(img, 0.04));  // and it streams on
 }
 
 TEST_F(V4l2, ClosesCleanly) {

@@ -173,7 +173,7 @@ struct DownView {
     const Lighting light = Lighting::parse("default,noise=0,camera=off", dataPath("config/lighting.json"));
     std::mt19937_64 rng(1);
     const CameraImage img =
-        renderer.renderImage(m, d, mj_name2id(m, mjOBJ_CAMERA, "r0/CameraTop"), 320, 240, light, CameraId::Top, 0, rng);
+        renderer.renderImage(m, d, mj_name2id(m, mjOBJ_CAMERA, "r0/CameraTop"), 320, 240, light, CameraId::Top, 0, rng, ExposureWeights{});
     double sum = 0, sq = 0;
     int n = 0;
     for (int r = 40; r < 200; ++r)

@@ -322,7 +322,7 @@ TEST(SimBackend, StepsTheWorldAndDeliversImagesAt30Hz) {
   world.placeRobot(0, Eigen::Vector3d(0, 0, 0), posture());
   SimBackend backend(world, 0);
   int renders[2] = {0, 0};
-  backend.setImageSource([&](CameraId camera, double) {
+  backend.setImageSource([&](CameraId camera, double, const ExposureWeights&) {
     ++renders[static_cast<int>(camera)];
     CameraImage image;
     image.width = 4;

@@ -52,6 +52,10 @@ class NaoBackend : public Backend {
   bool waitForSensors(SensorFrame& frame) override;
   bool takeImage(CameraId camera, CameraImage& image) override;
   void sendRequest(const JointRequest& joints, const LedRequest& leds) override;
+  // To the camera source (a V4L2 camera writes them to the NAO camera's extension unit).
+  void setExposureWeights(CameraId camera, const ExposureWeights& weights) override {
+    if (const auto& source = cameras_[static_cast<int>(camera)]) source->setExposureWeights(weights);
+  }
   std::string stopReason() const override { return stopReason_; }
   // Answers the packet waitForSensors returned soft in place, without a program's request and
   // without starting the stiffness ramp: while the robot program is still being built.

@@ -71,6 +71,11 @@ void SocketCamera::receiveLoop() {
       continue;
     }
     if (log_) log_(name + "receiving frames from " + path_);
+    {
+      std::lock_guard<std::mutex> lock(sendMutex_);
+      connection_ = fd;
+      if (weights_) sendWeights(fd);
+    }
     waitingLogged = false;
     std::string problem;
     for (;;) {
@@ -102,6 +107,10 @@ void SocketCamera::receiveLoop() {
       ready_ = true;
       ++received_;
     }
+    {
+      std::lock_guard<std::mutex> lock(sendMutex_);
+      connection_ = -1;
+    }
     ::close(fd);
     if (stop_) break;
     if (!problem.empty()) {
@@ -112,6 +121,21 @@ void SocketCamera::receiveLoop() {
                    "; connecting again");
     for (int i = 0; i < 5 && !stop_; ++i) ::usleep(20000);
   }
+}
+
+void SocketCamera::setExposureWeights(const ExposureWeights& weights) {
+  std::lock_guard<std::mutex> lock(sendMutex_);
+  if (weights_ && *weights_ == weights) return;
+  weights_ = weights;
+  if (connection_ >= 0) sendWeights(connection_);
+}
+
+void SocketCamera::sendWeights(int fd) {
+  std::uint8_t message[kSocketWeightsSize];
+  std::memcpy(message, kSocketWeightsMagic, 4);
+  std::memcpy(message + 4, weights_->cell.data(), weights_->cell.size());
+  // Never blocks the motion thread; a dead connection is the receiver's to notice.
+  (void)::send(fd, message, sizeof message, MSG_NOSIGNAL | MSG_DONTWAIT);
 }
 
 bool SocketCamera::grab(CameraImage& image, double /*now*/) {

@@ -1,6 +1,8 @@
 #include "robot/nao/V4l2Camera.h"
 
 #include <fcntl.h>
+#include <linux/usb/video.h>
+#include <linux/uvcvideo.h>
 #include <linux/videodev2.h>
 #include <sys/ioctl.h>
 #include <sys/mman.h>
@@ -223,6 +225,40 @@ void V4l2Camera::setControls() {
   if (c.gain) setControl(V4L2_CID_GAIN, *c.gain, "gain", true);
   if (c.autoWhiteBalance) setControl(V4L2_CID_AUTO_WHITE_BALANCE, *c.autoWhiteBalance ? 1 : 0, "auto white balance", true);
   if (c.whiteBalance) setControl(V4L2_CID_WHITE_BALANCE_TEMPERATURE, *c.whiteBalance, "white balance", true);
+  writeExposureWeights();
+}
+
+std::array<std::uint8_t, 17> naoExposureWeightsPayload(const ExposureWeights& weights, int width, int height) {
+  const auto hi = [](int v) { return static_cast<std::uint8_t>((v >> 8) & 0xff); };
+  const auto lo = [](int v) { return static_cast<std::uint8_t>(v & 0xff); };
+  std::array<std::uint8_t, 17> p{1, 0, 0, 0, 0, hi(width), lo(width), hi(height), lo(height)};
+  for (std::size_t k = 0; k < 8; ++k)
+    p[9 + k] = static_cast<std::uint8_t>((std::min<int>(weights.cell[2 * k], ExposureWeights::kMax)) |
+                                         (std::min<int>(weights.cell[2 * k + 1], ExposureWeights::kMax) << 4));
+  return p;
+}
+
+void V4l2Camera::setExposureWeights(const ExposureWeights& weights) {
+  if (exposureWeights_ && *exposureWeights_ == weights) return;
+  exposureWeights_ = weights;
+  if (streaming_) writeExposureWeights();
+}
+
+void V4l2Camera::writeExposureWeights() {
+  if (!exposureWeights_ || exposureWeightsRefused_ || fd_ < 0) return;
+  std::array<std::uint8_t, 17> payload = naoExposureWeightsPayload(*exposureWeights_, width_, height_);
+  uvc_xu_control_query q{};
+  q.unit = kNaoCameraExtensionUnit;
+  q.selector = kNaoExposureWeightsSelector;
+  q.query = UVC_SET_CUR;
+  q.size = static_cast<__u16>(payload.size());
+  q.data = payload.data();
+  if (dev_->ioctl(fd_, UVCIOC_CTRL_QUERY, &q) < 0) {
+    exposureWeightsRefused_ = true;
+    log_(std::string("camera ") + cameraName(config_.camera) + " (" + config_.device +
+         "): setting the auto exposure weights failed (" + std::strerror(errno) +
+         "); the camera meters its own way from now on");
+  }
 }
 
 void V4l2Camera::recover(const std::string& what, double now) {

@@ -6,6 +6,7 @@
 #include <poll.h>
 #include <sys/types.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -73,6 +74,9 @@ class V4l2Camera : public CameraSource {
   // newest one (older ready frames are dropped), timestamp = the kernel's capture time in
   // CLOCK_MONOTONIC seconds. now: CLOCK_MONOTONIC seconds, for the recovery timing.
   bool grab(CameraImage& image, double now) override;
+  // Written to the camera now when it streams, and again after every reopen. A camera without
+  // the NAO's extension unit (any other UVC camera) refuses: logged once, then left alone.
+  void setExposureWeights(const ExposureWeights& weights) override;
 
   bool streaming() const { return streaming_; }
   int width() const { return width_; }
@@ -94,6 +98,7 @@ class V4l2Camera : public CameraSource {
   bool fail(const std::string& what);
   void recover(const std::string& what, double now);
   void setControls();
+  void writeExposureWeights();
   bool setControl(std::uint32_t id, int value, const char* name, bool required);
   bool queue(std::uint32_t index);
 
@@ -107,9 +112,20 @@ class V4l2Camera : public CameraSource {
   bool softwareRotation_ = false;
   double lastFrame_ = 0, nextOpen_ = 0;
   bool everOpened_ = false;
+  std::optional<ExposureWeights> exposureWeights_;  // set by the program; unset: the camera's own
+  bool exposureWeightsRefused_ = false;
   std::string lastError_;
   Stats stats_;
 };
+
+// The NAO V6 camera's auto exposure window and weights: UVC extension unit 3, selector 9, 17
+// bytes: 1 (enabled), the window's first column, first row, last column, last row (16 bit each,
+// high byte first; the whole image), then the 16 weights of the 4 x 4 cells, two per byte in
+// row-major order, the even cell in the low nibble (as the OV5640's AEC weight registers
+// 0x5688..0x568F hold them).
+inline constexpr std::uint8_t kNaoCameraExtensionUnit = 3;
+inline constexpr std::uint8_t kNaoExposureWeightsSelector = 9;
+std::array<std::uint8_t, 17> naoExposureWeightsPayload(const ExposureWeights& weights, int width, int height);
 
 // Rotates a YUYV image by 180 deg in place (pairs reversed, Y0/Y1 swapped within each pair).
 void rotateYuyv180(CameraImage& image);

@@ -63,7 +63,7 @@ TEST(ModuleRegistry, ListsEveryModuleWithItsDeclarations) {
 TEST(ModuleRegistry, CommittedModulesJson) {
   const ProviderMap p = loadProviders(dataPath("config/modules.json"));
   EXPECT_EQ(p.at("FallState"), "FallDetector");
-  EXPECT_EQ(chosenModules(p), (Names{"BallLocator", "BallTracker", "BehaviorControl", "ButtonStateProvider", "Calibrator",
+  EXPECT_EQ(chosenModules(p), (Names{"AutoExposureWeighting", "BallLocator", "BallTracker", "BehaviorControl", "ButtonStateProvider", "Calibrator",
                                      "CameraCalibrationProvider",
                                      "CameraMatrixProvider",
                                      "CameraVision", "ChallengeModeProvider", "ExposureCameraMatrixProvider", "FallDetector", "FieldBallLocator",
@@ -119,7 +119,7 @@ TEST(RobotProgram, OrderFollowsTheDeclarations) {
                    "ChallengeModeProvider",
                    "FallDetector", "HeadControl",
                    "MotionEngine", "FrameHistoryProvider", "GameStateProvider", "LedControl",
-                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "CameraVision", "SelfLocalization", "BallLocator", "BallTracker", "FieldBallLocator",
+                   "ExposureCameraMatrixProvider", "OwnBodyProvider", "AutoExposureWeighting", "CameraVision", "SelfLocalization", "BallLocator", "BallTracker", "FieldBallLocator",
                    "BehaviorControl", "Calibrator"}));
 }
 

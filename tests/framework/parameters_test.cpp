@@ -15,6 +15,7 @@
 #include "controllers/modules/HeadControl.h"
 #include "controllers/modules/MotionEngineParams.h"
 #include "controllers/modules/SelfLocalization.h"
+#include "perception/ExposureWeighting.h"
 #include "perception/OwnBody.h"
 #include "robot/Error.h"
 #include "robot/Parameters.h"
@@ -143,6 +144,7 @@ TEST(Parameters, CommittedFilesHoldTodaysDefaults) {
   same("BehaviorControl", paramsToJson(modules::BehaviorControl::Params{}));
   same("BallTracker", paramsToJson(modules::BallTracker::Params{}));
   same("OwnBodyProvider", paramsToJson(OwnBodyParams{}));
+  same("AutoExposureWeighting", paramsToJson(ExposureWeightingParams{}));
   // And they load without complaint to the same values.
   const auto m = loadParams<MotionEngine::Params>("MotionEngine", dir);
   EXPECT_EQ(paramsToJson(m), paramsToJson(MotionEngine::Params{}));

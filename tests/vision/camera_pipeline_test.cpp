@@ -222,7 +222,7 @@ std::vector<Frame> simulatedFrames(int n) {
                               CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY()));
       frames.push_back({std::string("sim ") + std::to_string(i) + " " + cameraName(camera) + " " + presets[i % 4],
                         renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera), res.width,
-                                             res.height, lighting, camera, 0, rng),
+                                             res.height, lighting, camera, 0, rng, ExposureWeights{}),
                         cm});
     }
   }
