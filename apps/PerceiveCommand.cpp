@@ -17,6 +17,7 @@
 #include "perception/vision/Annotate.h"
 #include "perception/vision/CameraPipeline.h"
 #include "perception/vision/VisionPipeline.h"
+#include "representations/perception/DenoisedImage.h"
 #include "robot/Error.h"
 #include "sim/ImageIO.h"
 
@@ -133,6 +134,9 @@ int perceiveCommand(const PerceiveOptions& options) {
   j["camera_matrix"] = recorded ? nlohmann::json(options.cameraMatrix) : nlohmann::json("nominal");
   j["head_deg"] = recorded ? nlohmann::json(nullptr) : nlohmann::json{head[0], head[1]};
   j["torso_deg"] = recorded ? nlohmann::json(nullptr) : nlohmann::json{torso[0], torso[1]};
+  const DenoisedImage& denoised = pipeline.get<DenoisedImage>();
+  j["image"]["noise"] = denoised.noise;
+  j["image"]["blur_radius"] = denoised.radius;  // 0: the vision read the image as it came
   j["calibration_sample"] = calibrationSampleJson(sample, eo.goalBoxDepth);
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;

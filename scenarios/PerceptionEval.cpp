@@ -15,6 +15,7 @@
 #include "perception/vision/Annotate.h"
 #include "perception/vision/CameraPipeline.h"
 #include "perception/vision/VisionPipeline.h"
+#include "representations/perception/DenoisedImage.h"
 #include "robot/Error.h"
 #include "robot/OutputFiles.h"
 #include "robot/ForwardKinematics.h"
@@ -413,6 +414,8 @@ void PerceptionFigures::add(const PerceptionFigures& o) {
   intersections += o.intersections, intersectionsCorrect += o.intersectionsCorrect;
   penaltyMarks += o.penaltyMarks, penaltyMarksCorrect += o.penaltyMarksCorrect;
   penaltyMarkFrames += o.penaltyMarkFrames, penaltyMarkFound += o.penaltyMarkFound;
+  imageNoise.insert(imageNoise.end(), o.imageNoise.begin(), o.imageNoise.end());
+  blurredFrames += o.blurredFrames;
 }
 
 nlohmann::json PerceptionFigures::toJson() const {
@@ -445,7 +448,8 @@ nlohmann::json PerceptionFigures::toJson() const {
            {{"detections", penaltyMarks},
             {"precision", penaltyMarks ? double(penaltyMarksCorrect) / penaltyMarks : 1.0},
             {"frames_in_view", penaltyMarkFrames},
-            {"recall", penaltyMarkFrames ? double(penaltyMarkFound) / penaltyMarkFrames : 1.0}}}};
+            {"recall", penaltyMarkFrames ? double(penaltyMarkFound) / penaltyMarkFrames : 1.0}}},
+          {"image", {{"noise_median", median(imageNoise)}, {"blurred_frames", blurredFrames}}}};
 }
 
 nlohmann::json PerceptionEvalResult::toJson() const {
@@ -590,6 +594,7 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
       for (const Lighting& lighting : lightings) {
         VisionResult r;
         CameraImage img;
+        PerceptionFigures fig;
         if (oracle) {
           const CameraPercepts p = modules::OracleVision::perceive(sight, cm, options.oracle,
                                                                    options.field.centerCircleDiameter / 2, oracleRng);
@@ -607,8 +612,10 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
           pipeline.process(img, cm);
           r = pipeline.visionResult();
           result.perceptionMs.push_back(pipeline.totalMs());
+          const DenoisedImage& denoised = pipeline.get<DenoisedImage>();
+          fig.imageNoise.push_back(denoised.noise);
+          fig.blurredFrames += denoised.radius > 0;
         }
-        PerceptionFigures fig;
         scoreFrame(world, camera, truth, r, robotPose, fig, {debug, trial, lighting.name});
         result.byLighting[lighting.name].add(fig);
         result.byVenue[scene.venue].add(fig);

@@ -83,6 +83,8 @@ struct PerceptionFigures {
   int intersections = 0, intersectionsCorrect = 0;  // position within 0.3 m and the same type
   int penaltyMarks = 0, penaltyMarksCorrect = 0;
   int penaltyMarkFrames = 0, penaltyMarkFound = 0;  // a cross in view within 3 m, wholly in the image
+  std::vector<double> imageNoise;  // each rendered frame's luma noise (ImageDenoiser)
+  int blurredFrames = 0;           // frames the vision read blurred for their noise
   double lineRecall() const { return trueLines ? double(trueLinesFound) / trueLines : 1; }
   double linePrecision() const { return detectedLines ? double(detectedLinesMatched) / detectedLines : 1; }
   double circleRate() const { return circleFrames ? double(circleFound) / circleFrames : 1; }

@@ -33,6 +33,7 @@ CameraVision::CameraVision(const ModuleContext& context) {
   CameraPipelineConfig config;
   config.configDir = context.configDir;
   config.headId = context.headId;
+  config.params = context.params;  // a scenario's or test's parameters for the vision's modules
   config.debug = context.debug;
   for (CameraId cam : {CameraId::Top, CameraId::Bottom})
     pipelines_[static_cast<int>(cam)] = std::make_unique<CameraPipeline>(cam, geometry, config);

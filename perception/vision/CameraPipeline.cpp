@@ -9,7 +9,7 @@
 // program that uses the camera pipeline must keep them, so this file refers to each one's
 // anchor (perception/vision/modules/<Name>.cpp).
 #define NAO_VISION_MODULES(X)                                                                       \
-  X(ScanGridProvider) X(ScanLineRegionProvider) X(FieldBoundaryProvider) X(ScanLineRegionCutter)    \
+  X(ImageDenoiser) X(ScanGridProvider) X(ScanLineRegionProvider) X(FieldBoundaryProvider) X(ScanLineRegionCutter)    \
   X(ObstaclePerceptor) X(FieldColourReferenceProvider) X(BallPerceptor) X(LineSpotProvider)          \
   X(CirclePerceptor) X(LinePerceptor) X(IntersectionPerceptor) X(PenaltyMarkPerceptor)               \
   X(GoalBoxSidePerceptor) X(CameraPerceptsProvider)
@@ -59,8 +59,9 @@ CameraPipeline::CameraPipeline(CameraId camera, const VisionGeometry& geometry, 
   ProviderMap providers = loadProviders(dir + "/camera_modules.json");
   if (!config.providers.empty()) overrideProviders(providers, config.providers, "CameraPipelineConfig.providers");
   ModuleContext context;
-  if (!config.configDir.empty()) context.configDir = config.configDir;
+  context.configDir = dir;  // the modules' parameters/ beside camera_modules.json
   context.headId = config.headId;
+  context.params = config.params;
   context.debug = debug_ = config.debug;
   pipeline_.setDebug(config.debug, std::string("vision_") + cameraName(camera));
   board_.write<VisionGeometry>() = geometry_;

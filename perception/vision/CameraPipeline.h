@@ -13,6 +13,8 @@
 //   top.get<ScanLineRegions>();                    // an intermediate result, for drawing
 //
 // runVision (VisionPipeline.h), `eval perception` and `bench perception` run through this.
+#include <any>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +36,7 @@ struct CameraPipelineConfig {
   std::string configDir;  // holds camera_modules.json and parameters/; empty: the installed config/
   std::string headId;     // per-robot parameter overlay; empty: none
   ProviderMap providers;  // representation -> module, replacing config/camera_modules.json's choice
+  std::map<std::string, std::any> params;  // module -> its Params instead of its file (ModuleContext::params)
   DebugChannels* debug = nullptr;  // for the modules and `timing` (as "vision_top"/"vision_bottom"); not owned
 };
 

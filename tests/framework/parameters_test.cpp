@@ -17,6 +17,7 @@
 #include "controllers/modules/SelfLocalization.h"
 #include "perception/ExposureWeighting.h"
 #include "perception/OwnBody.h"
+#include "perception/vision/Denoise.h"
 #include "robot/Error.h"
 #include "robot/Parameters.h"
 #include "robot/Paths.h"
@@ -145,6 +146,7 @@ TEST(Parameters, CommittedFilesHoldTodaysDefaults) {
   same("BallTracker", paramsToJson(modules::BallTracker::Params{}));
   same("OwnBodyProvider", paramsToJson(OwnBodyParams{}));
   same("AutoExposureWeighting", paramsToJson(ExposureWeightingParams{}));
+  same("ImageDenoiser", paramsToJson(DenoiseParams{}));
   // And they load without complaint to the same values.
   const auto m = loadParams<MotionEngine::Params>("MotionEngine", dir);
   EXPECT_EQ(paramsToJson(m), paramsToJson(MotionEngine::Params{}));

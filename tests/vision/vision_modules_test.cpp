@@ -108,7 +108,7 @@ TEST(ScanLineRegionProvider, WhiteWherePaintIsFieldElsewhere) {
   const CameraImage image = test::syntheticImage(cm, {}, segmentsPaint(kT));
   const Upstream up(image, cm);
   ModuleHarness h = harness<modules::ScanLineRegionProvider>();
-  up.fixInto<CameraImage, ScanGrid>(h);
+  up.fixInto<CameraImage, DenoisedImage, ScanGrid>(h);
   h.run();
   const UncutScanLineRegions& regions = h.get<UncutScanLineRegions>();
   ASSERT_TRUE(regions.fieldColour.valid);
@@ -257,7 +257,8 @@ TEST(BallPerceptor, FindsTheBallWhereItLies) {
                            test::kNoPaint);
   const Upstream up(image, cm);
   ModuleHarness h = harness<modules::BallPerceptor>();
-  up.fixInto<CameraImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry>(h);
+  up.fixInto<CameraImage, DenoisedImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix,
+                   VisionGeometry>(h);
   h.fix(OwnBody{}).run();
   const BallPercept b = h.get<BallPercept>();
   ASSERT_TRUE(b.seen);
@@ -272,7 +273,8 @@ TEST(BallPerceptor, FindsTheBallWhereItLies) {
   const CameraImage empty = test::syntheticImage(cm, {}, test::kNoPaint);
   const Upstream upEmpty(empty, cm);
   ModuleHarness h2 = harness<modules::BallPerceptor>();
-  upEmpty.fixInto<CameraImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry>(
+  upEmpty.fixInto<CameraImage, DenoisedImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix,
+                   VisionGeometry>(
       h2);
   EXPECT_FALSE(h2.fix(OwnBody{}).run().get<BallPercept>().seen);
 }

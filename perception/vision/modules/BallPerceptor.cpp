@@ -13,7 +13,7 @@ void BallPerceptor::update() {
   params.radius = in<VisionGeometry>().ballRadius;
   params.classifier = &vision::defaultBallClassifier();
   params.ownBody = &in<OwnBody>();
-  out<BallPercept>() = vision::detectBall(in<CameraImage>(), in<ScanLineRegions>(), in<FieldColourReference>(),
+  out<BallPercept>() = vision::detectBall(in<DenoisedImage>().image(in<CameraImage>()), in<ScanLineRegions>(), in<FieldColourReference>(),
                                           in<ObstaclesPercept>(), in<CameraMatrix>(), params);
 }
 

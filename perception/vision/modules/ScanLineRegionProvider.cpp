@@ -9,7 +9,7 @@ ScanLineRegionProvider::ScanLineRegionProvider(const ModuleContext&) {}
 
 void ScanLineRegionProvider::update() {
   static_cast<ScanLineRegions&>(out<UncutScanLineRegions>()) =
-      computeScanLineRegions(in<CameraImage>(), in<ScanGrid>(), nullptr);
+      computeScanLineRegions(in<DenoisedImage>().image(in<CameraImage>()), in<ScanGrid>(), nullptr);
 }
 
 NAO_REGISTER_MODULE(ScanLineRegionProvider);
