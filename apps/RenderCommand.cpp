@@ -81,9 +81,7 @@ int renderCommand(const RenderOptions& o) {
     const ExposureWeights weights =
         recorded ? metering(recorded->matrix)
                  : metering(computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in),
-                            sensors.joints.position,
-                            robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y()),
-                            offsets);
+                            sensors, offsets);
     const CameraImage img = renderer.renderImage(world.model(), world.data(), world.cameraIndex(0, camera), res.width,
                                                  res.height, lighting, camera, world.time(), rng, weights);
     sim::writePng(out, img);

@@ -74,14 +74,18 @@ std::optional<Eigen::Vector2d> CameraMatrix::imageToField(const Eigen::Vector2d&
   return robotToField(*p, robotPose);
 }
 
+Eigen::Isometry3d bodyOffset(const CameraCalibration& calib) {
+  Eigen::Isometry3d offset = Eigen::Isometry3d::Identity();
+  offset.linear() = rotX(calib.bodyRoll) * rotY(calib.bodyPitch);
+  return offset;
+}
+
 Eigen::Isometry3d torsoToCalibratedCamera(const JointArray& joints, CameraId camera, const CameraCalibration& calib) {
   const bool top = camera == CameraId::Top;
-  Eigen::Isometry3d bodyOffset = Eigen::Isometry3d::Identity();
-  bodyOffset.linear() = rotX(calib.bodyRoll) * rotY(calib.bodyPitch);
   Eigen::Isometry3d cameraOffset = Eigen::Isometry3d::Identity();
   cameraOffset.linear() = top ? rotX(calib.topRoll) * rotY(calib.topPitch)
                               : rotX(calib.bottomRoll) * rotY(calib.bottomPitch);
-  return bodyOffset * torsoToHead(joints) * headToCamera(camera) * cameraOffset;
+  return bodyOffset(calib) * torsoToHead(joints) * headToCamera(camera) * cameraOffset;
 }
 
 CameraMatrix computeCameraMatrix(const JointArray& joints, const Eigen::Isometry3d& robotToTorsoPose,

@@ -105,6 +105,9 @@ struct CameraMatrix {
 // C_body * T_torso_head(joints) * T_head_cam_nominal * C_cam: the calibrated camera pose in
 // the torso frame, with C_body = Rx(body_roll) Ry(body_pitch) and C_cam = Rx(roll) Ry(pitch)
 // (the camera's offsets; camera frame, x = optical axis).
+// The torso as the calibration believes it tilted: Rx(bodyRoll) Ry(bodyPitch), applied after
+// robotToTorso (the camera matrix, the own body and its metering all use it).
+Eigen::Isometry3d bodyOffset(const CameraCalibration& calib);
 Eigen::Isometry3d torsoToCalibratedCamera(const JointArray& joints, CameraId camera, const CameraCalibration& calib);
 
 // The camera matrix of a standing/walking robot: the torso is oriented Ry(pitch) Rx(roll)

@@ -6,6 +6,7 @@
 
 #include "robot/CameraImage.h"
 #include "robot/JointIds.h"
+#include "robot/SensorData.h"
 
 namespace nao {
 
@@ -50,5 +51,9 @@ double torsoHeightAboveGround(const JointArray& joints, double roll, double pitc
 // T_robot_torso: Trans(0, 0, torsoHeightAboveGround) * torsoTilt(roll, pitch).
 Eigen::Isometry3d robotToTorso(const JointArray& joints, double roll, double pitch,
                                SoleContact contact = SoleContact::LowestCorner);
+// The same from one sensor frame's joint angles and IMU roll and pitch.
+inline Eigen::Isometry3d robotToTorso(const SensorFrame& sensors) {
+  return robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y());
+}
 
 }  // namespace nao

@@ -176,9 +176,7 @@ BallSamples renderBallSamples(const BallTrainingOptions& options) {
       const CameraResolution res = world.cameraResolution(camera);
       const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
       const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in);
-      const ExposureWeights weights =
-          metering(cm, sensors.joints.position,
-                   robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y()), offsets);
+      const ExposureWeights weights = metering(cm, sensors, offsets);
       std::vector<VisibleBall> balls;
       const std::vector<VisibleBall> allBalls = visibleFeatures(world, 0, camera, 1e9).balls;  // for the fits
       for (const VisibleBall& b : visibleFeatures(world, 0, camera, 6.0).balls)

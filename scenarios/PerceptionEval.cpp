@@ -586,9 +586,7 @@ PerceptionEvalResult evaluatePerception(const PerceptionEvalOptions& options) {
       const CameraResolution res = world.cameraResolution(camera);
       const CameraIntrinsics in = CameraIntrinsics::fromFovY(res.width, res.height, world.cameraFovY());
       const CameraMatrix cm = computeCameraMatrix(sensors.joints.position, sensors.inertial.angle, camera, offsets, in);
-      const ExposureWeights weights =
-          metering(cm, sensors.joints.position,
-                   robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y()), offsets);
+      const ExposureWeights weights = metering(cm, sensors, offsets);
       const FrameTruth truth = computeTruth(world, camera);
       const OracleView sight = oracleView(world, 0, camera);
       for (const Lighting& lighting : lightings) {

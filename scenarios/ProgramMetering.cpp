@@ -11,12 +11,10 @@ ProgramMetering::ProgramMetering(const std::string& configDir) {
   body_ = loadParams<OwnBodyParams>("OwnBodyProvider", configDir);
 }
 
-ExposureWeights ProgramMetering::operator()(const CameraMatrix& cm, const JointArray& joints,
-                                            const Eigen::Isometry3d& robotToTorso,
+ExposureWeights ProgramMetering::operator()(const CameraMatrix& cm, const SensorFrame& sensors,
                                             const CameraCalibration& calibration) const {
-  Eigen::Isometry3d bodyOffset = Eigen::Isometry3d::Identity();
-  bodyOffset.linear() = rotX(calibration.bodyRoll) * rotY(calibration.bodyPitch);
-  return exposureWeights(cm, ownBodyAt(joints, robotToTorso * bodyOffset, body_), weighting_);
+  const Eigen::Isometry3d torso = robotToTorso(sensors) * bodyOffset(calibration);
+  return exposureWeights(cm, ownBodyAt(sensors.joints.position, torso, body_), weighting_);
 }
 
 }  // namespace nao

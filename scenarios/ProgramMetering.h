@@ -5,14 +5,12 @@
 // the one the vision is told (the model's, with the offsets it believes), as in the program.
 #include <string>
 
-#include <Eigen/Geometry>
-
 #include "perception/CameraCalibration.h"
 #include "perception/CameraModel.h"
 #include "perception/ExposureWeighting.h"
 #include "perception/OwnBody.h"
 #include "robot/ExposureWeights.h"
-#include "robot/JointIds.h"
+#include "robot/SensorData.h"
 
 namespace nao {
 
@@ -21,9 +19,9 @@ class ProgramMetering {
   // Reads configDir/parameters/{AutoExposureWeighting,OwnBodyProvider}.json (a bad file
   // throws, naming it); empty: the compiled-in defaults.
   explicit ProgramMetering(const std::string& configDir);
-  // cm: the camera as the program computes it; robotToTorso: the torso from the joints and the
-  // IMU (robot/ForwardKinematics.h), before the body offset, which `calibration` holds.
-  ExposureWeights operator()(const CameraMatrix& cm, const JointArray& joints, const Eigen::Isometry3d& robotToTorso,
+  // cm: the camera as the program computes it from these sensors and the offsets it believes
+  // (`calibration`).
+  ExposureWeights operator()(const CameraMatrix& cm, const SensorFrame& sensors,
                              const CameraCalibration& calibration) const;
   // A camera placed by hand (a recorded real image's twin): no body in view.
   ExposureWeights operator()(const CameraMatrix& cm) const { return exposureWeights(cm, OwnBody{}, weighting_); }

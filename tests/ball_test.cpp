@@ -269,9 +269,7 @@ class BallScene : public ::testing::Test {
                               CameraIntrinsics::fromFovY(res.width, res.height, world_->cameraFovY()));
     // Exposed as the robot program meters this view (its AutoExposureWeighting).
     static const ProgramMetering metering(dataPath("config"));
-    const ExposureWeights weights =
-        metering(cm_, s.joints.position, robotToTorso(s.joints.position, s.inertial.angle.x(), s.inertial.angle.y()),
-                 CameraCalibration{});
+    const ExposureWeights weights = metering(cm_, s, CameraCalibration{});
     renderer_->resetCameraSensors();  // a settled camera at each placed view, not a jump from the last
     image_ = renderer_->renderImage(world_->model(), world_->data(), world_->cameraIndex(0, camera), res.width,
                                     res.height, lighting, camera, 0, rng_, weights);

@@ -15,10 +15,7 @@ void OwnBodyProvider::update() {
     out<OwnBody>() = OwnBody{};
     return;
   }
-  const CameraCalibration& calib = in<CameraCalibration>();
-  Eigen::Isometry3d bodyOffset = Eigen::Isometry3d::Identity();
-  bodyOffset.linear() = rotX(calib.bodyRoll) * rotY(calib.bodyPitch);
-  out<OwnBody>() = ownBodyAt(joints, robotToTorso * bodyOffset, params_);
+  out<OwnBody>() = ownBodyAt(joints, robotToTorso * bodyOffset(in<CameraCalibration>()), params_);
 }
 
 NAO_REGISTER_MODULE(OwnBodyProvider);

@@ -6,8 +6,7 @@
 namespace nao::modules {
 
 void TorsoMatrixProvider::update() {
-  const SensorFrame& frame = in<SensorFrame>();
-  out<TorsoState>().robotToTorso = robotToTorso(frame.joints.position, frame.inertial.angle.x(), frame.inertial.angle.y());
+  out<TorsoState>().robotToTorso = robotToTorso(in<SensorFrame>());
 }
 
 NAO_REGISTER_MODULE(TorsoMatrixProvider);

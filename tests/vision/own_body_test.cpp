@@ -73,9 +73,7 @@ CameraMatrix cameraMatrix(const sim::World& world, CameraId camera) {
 
 OwnBody bodyOf(const sim::World& world) {
   const SensorFrame sensors = world.sensors(0);
-  return ownBodyAt(sensors.joints.position,
-                   robotToTorso(sensors.joints.position, sensors.inertial.angle.x(), sensors.inertial.angle.y()),
-                   OwnBodyParams{});
+  return ownBodyAt(sensors.joints.position, robotToTorso(sensors), OwnBodyParams{});
 }
 
 // How far along `dir` from `eye` the first geom the renderer draws lies (groups 0-2, at least
