@@ -74,8 +74,15 @@ struct PlaneBlur {
 }  // namespace
 
 void boxBlur(const CameraImage& image, int radius, CameraImage& out) {
-  out = image;
-  if (radius <= 0 || !image.valid()) return;
+  if (radius <= 0 || !image.valid()) {
+    out = image;
+    return;
+  }
+  // Every byte is written below: take the image's description, not its pixels (and keep the
+  // output's buffer from the last noisy image).
+  out.camera = image.camera, out.width = image.width, out.height = image.height;
+  out.timestamp = image.timestamp, out.oracle = image.oracle;
+  out.yuyv.resize(image.yuyv.size());
   const int w = image.width, h = image.height, pairs = w / 2;
   const std::size_t pixels = static_cast<std::size_t>(w) * h, pairCount = pixels / 2;
   thread_local std::vector<std::uint8_t> planes, blurred;

@@ -7,7 +7,7 @@ namespace nao {
 
 struct DenoisedImage {
   double noise = 0;  // the camera image's luma noise (standard deviation, in luma steps)
-  int radius = 0;    // of the box blur; 0: not blurred, `blurred` is empty
+  int radius = 0;    // of the box blur; 0: not blurred (`blurred` keeps only its buffer, unused)
   CameraImage blurred;
 
   const CameraImage& image(const CameraImage& raw) const { return radius > 0 ? blurred : raw; }

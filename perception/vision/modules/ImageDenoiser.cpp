@@ -11,10 +11,7 @@ void ImageDenoiser::update() {
   DenoisedImage& out = this->out<DenoisedImage>();
   out.noise = lumaNoise(image, params_.sampleStep);
   out.radius = params_.enabled && out.noise > params_.minNoise ? params_.radius : 0;
-  if (out.radius > 0)
-    boxBlur(image, out.radius, out.blurred);
-  else
-    out.blurred = CameraImage{};
+  if (out.radius > 0) boxBlur(image, out.radius, out.blurred);
 }
 
 NAO_REGISTER_MODULE(ImageDenoiser);
