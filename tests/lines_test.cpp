@@ -8,12 +8,16 @@
 #include <random>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "controllers/StandController.h"
 #include "perception/CameraModel.h"
 #include "support/StandingCamera.h"
 #include "perception/Geometry.h"
 #include "perception/vision/ColourTests.h"
+#include "perception/vision/FieldBoundaryDetector.h"
+#include "perception/vision/ObstacleDetector.h"
+#include "perception/vision/ScanGrid.h"
 #include "perception/vision/GoalBoxDetector.h"
 #include "perception/vision/IntersectionDetector.h"
 #include "perception/vision/LineDetector.h"
@@ -43,7 +47,8 @@ double segmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const
 // everything else below the horizon is grass, above it a grey wall. RGB scaled by `gain`
 // and tinted by `tint` (the light), plus sensor noise.
 CameraImage syntheticImage(const CameraMatrix& cm, const std::function<bool(const Eigen::Vector2d&)>& paint,
-                           double gain = 1.0, const cv::Vec3d& tint = {1, 1, 1}, double noise = 2.0) {
+                           double gain = 1.0, const cv::Vec3d& tint = {1, 1, 1}, double noise = 2.0,
+                           double blurSigmaPx = 0) {
   const int w = cm.intrinsics.width, h = cm.intrinsics.height;
   cv::Mat rgb(h, w, CV_8UC3);
   std::mt19937 rng(7);
@@ -66,6 +71,7 @@ CameraImage syntheticImage(const CameraMatrix& cm, const std::function<bool(cons
       for (int k = 0; k < 3; ++k)
         rgb.at<cv::Vec3b>(y, x)[k] = cv::saturate_cast<std::uint8_t>(c[k] * gain * tint[k] + n(rng));
     }
+  if (blurSigmaPx > 0) cv::GaussianBlur(rgb, rgb, cv::Size(0, 0), blurSigmaPx);
   return sim::cameraImageFromRgb(rgb, CameraId::Top);
 }
 
@@ -93,6 +99,55 @@ TEST(LineDetector, FindsAStraightLineOnASyntheticImage) {
   EXPECT_TRUE(onSegment(r.lines.lines[0], a, b)) << r.lines.lines[0].from.transpose() << " -> " << r.lines.lines[0].to.transpose();
   EXPECT_GE(r.lines.lines[0].spots.size(), 10u);
   EXPECT_FALSE(r.lines.circle.found);
+}
+
+// The spots of a soft-edged line (defocus, as real frames show lines 2-5 m away) as the line
+// detector finds them: median thickness over expected width and median distance from the
+// true line's image.
+struct SoftLineSpots {
+  int spots = 0;
+  double thicknessRatio = 0, offsetPx = 0;
+};
+SoftLineSpots softLineSpots(const vision::LineParams& params) {
+  const CameraMatrix cm = standingCamera(0, 12);
+  const Eigen::Vector2d a(1.3, -1.5), b(1.3, 1.5);
+  const CameraImage image = syntheticImage(cm, linesPaint({{a, b}}), 1.0, {1, 1, 1}, 2.0, 2.2);
+  const ScanGrid grid = makeScanGrid(cm, image.width, image.height, params.lineWidth);
+  const ScanLineRegions all = computeScanLineRegions(image, grid, nullptr);
+  const FieldBoundary boundary = detectFieldBoundary(image, all, cm);
+  const ScanLineRegions regions = cutAtBoundary(all, boundary);
+  const ObstaclesPercept obstacles = detectObstacles(image, regions, boundary, cm);
+  const vision::FieldReference field = vision::FieldReference::from(regions);
+  const vision::LineCandidates c = vision::findLineCandidates(image, regions, field, obstacles, cm, params);
+  const Eigen::Vector2d p = *cm.projectGround(a), q = *cm.projectGround(b), d = (q - p).normalized();
+  std::vector<double> ratio, offset;
+  for (const auto& s : c.spots) {
+    if (!s.vertical) continue;
+    ratio.push_back(s.thicknessPx / s.expectedPx);
+    offset.push_back(std::abs(d.x() * (s.image.y() - p.y()) - d.y() * (s.image.x() - p.x())));
+  }
+  SoftLineSpots out;
+  out.spots = static_cast<int>(ratio.size());
+  if (ratio.empty()) return out;
+  std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
+  std::nth_element(offset.begin(), offset.begin() + offset.size() / 2, offset.end());
+  out.thicknessRatio = ratio[ratio.size() / 2];
+  out.offsetPx = offset[offset.size() / 2];
+  return out;
+}
+
+TEST(LineDetector, SoftEdgedLineSpotsAreMeasuredAtHalfContrast) {
+  const SoftLineSpots measured = softLineSpots({});
+  vision::LineParams regionsOnly;
+  regionsOnly.halfContrastFactor = 1e9;
+  const SoftLineSpots runs = softLineSpots(regionsOnly);
+  ASSERT_GE(measured.spots, 30);
+  // The blur widens the white runs well beyond a line's width; at half contrast the spots are
+  // about as thick as the line (a Gaussian of 2.2 px widens the line by little at half contrast).
+  EXPECT_GT(runs.thicknessRatio, 1.4) << "the test's blur no longer widens the runs";
+  EXPECT_LT(measured.thicknessRatio, 1.25);
+  EXPECT_GT(measured.thicknessRatio, 0.8);
+  EXPECT_LT(measured.offsetPx, 0.5);
 }
 
 TEST(LineDetector, NothingOnPlainGrass) {

@@ -193,7 +193,7 @@ TEST(PerceiveRecorded, ReportsTheCalibrationSampleOfARealImage) {
   EXPECT_TRUE(fs::exists(png));
 
   // A refused one says which check failed.
-  const auto r2 = runCommand("perceive " + kDir + "/1687083761.jpg --camera-matrix " + kDir + "/1687083761.json --json -");
+  const auto r2 = runCommand("perceive " + kDir + "/1687083893.jpg --camera-matrix " + kDir + "/1687083893.json --json -");
   ASSERT_EQ(r2.code, 0) << r2.out;
   const auto j2 = nlohmann::json::parse(r2.out.substr(r2.out.find('{')));
   ASSERT_FALSE(j2["calibration_sample"]["accepted"].get<bool>());

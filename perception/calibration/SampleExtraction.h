@@ -55,7 +55,9 @@ struct ExtractionOptions {
   // (docs/vision/real/).
   double longLinesFallbackDepressionDeg = 4;
   double minClippedLengthPx = 15;
-  int maxCandidates = 4;              // goal box candidates tried, best first
+  // Goal box candidates tried, best first. On the real goal-box frames the right one was 5th
+  // to 8th where far lines gave more junctions (docs/vision/real/README.md).
+  int maxCandidates = 8;
 };
 
 struct ExtractionResult {

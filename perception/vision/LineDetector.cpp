@@ -6,6 +6,7 @@
 #include <cmath>
 #include <array>
 #include <numeric>
+#include <optional>
 
 #include <Eigen/Eigenvalues>
 
@@ -64,9 +65,38 @@ bool risesFromBoundary(const std::vector<ScanLine>& verticals, const Eigen::Vect
   return it != verticals.begin() && fromBoundary(*std::prev(it));
 }
 
+// The centre and width of a white run at half its contrast to the field beside it, from the
+// luminance along the scan line (sub-pixel, blind to the blurred ramps the regions include).
+bool halfContrastRun(const CameraImage& img, bool vertical, int coord, int from, int to, double& centre,
+                     double& width) {
+  const int n = vertical ? img.height : img.width;
+  const int margin = std::clamp((to - from) / 2, 2, 6);
+  const int lo = std::max(0, from - margin), hi = std::min(n - 1, to - 1 + margin);
+  auto Y = [&](int i) -> double { return vertical ? img.y(coord, i) : img.y(i, coord); };
+  if (from <= lo || to - 1 >= hi) return false;
+  double peak = -1, baseLo = 1e9, baseHi = 1e9;
+  int ip = from;
+  for (int i = from; i < to; ++i)
+    if (Y(i) > peak) peak = Y(i), ip = i;
+  for (int i = lo; i < from; ++i) baseLo = std::min(baseLo, Y(i));
+  for (int i = to; i <= hi; ++i) baseHi = std::min(baseHi, Y(i));
+  const double base = 0.5 * (baseLo + baseHi);
+  if (peak - base < 8) return false;
+  const double level = base + 0.5 * (peak - base);
+  int l = ip, r = ip;
+  while (l > lo && Y(l - 1) >= level) --l;
+  while (r < hi && Y(r + 1) >= level) ++r;
+  if (l == lo || r == hi) return false;
+  const double left = l - 0.5 + (level - Y(l - 1)) / std::max(1e-6, Y(l) - Y(l - 1));
+  const double right = r + 0.5 + (Y(r) - level) / std::max(1e-6, Y(r) - Y(r + 1));
+  centre = 0.5 * (left + right);
+  width = right - left;
+  return true;
+}
+
 // Spots on one scan line direction, grouped by scan line. crossing: the vertical scan lines
 // (for the horizontal ones).
-void collectSpots(const std::vector<ScanLine>& lines, const std::vector<ScanLine>* crossing, bool vertical,
+void collectSpots(const CameraImage& image, const std::vector<ScanLine>& lines, const std::vector<ScanLine>* crossing, bool vertical,
                   int imageWidth, int imageHeight, const FieldReference& field,
                   const ObstaclesPercept& obstacles,
                   const CameraMatrix& cm, const LineParams& params, const BallPercept* ball,
@@ -81,14 +111,28 @@ void collectSpots(const std::vector<ScanLine>& lines, const std::vector<ScanLine
       // wall or a board beyond the field; one cut by the image border has an unknown middle.
       if (vertical && r.from <= sl.start) continue;
       if (r.to >= (vertical ? imageHeight : imageWidth) || (!vertical && r.from <= 0)) continue;
-      const double along = 0.5 * (r.from + r.to);
-      const Eigen::Vector2d px = vertical ? Eigen::Vector2d(sl.coord + 0.5, along) : Eigen::Vector2d(along, sl.coord + 0.5);
+      double along = 0.5 * (r.from + r.to);
+      double runWidth = r.to - r.from;
+      Eigen::Vector2d px = vertical ? Eigen::Vector2d(sl.coord + 0.5, along) : Eigen::Vector2d(along, sl.coord + 0.5);
       if (nearBall(ball, px)) continue;
       if (!vertical && risesFromBoundary(*crossing, px)) continue;
-      const GroundScale gs = groundScale(cm, px, params.lineWidth);
+      GroundScale gs = groundScale(cm, px, params.lineWidth);
       if (!gs.valid) continue;
-      const double expected = std::max(0.3, vertical ? gs.alongPx : gs.acrossPx);
-      const double thickness = r.to - r.from;
+      double expected = std::max(0.3, vertical ? gs.alongPx : gs.acrossPx);
+      // A run wider than a line there (but not too wide for one) may be a line with soft
+      // edges: the regions include its ramps, which move its middle and double its width.
+      if (runWidth > params.halfContrastFactor * expected + 2 && runWidth <= params.maxThicknessFactor * expected + 2) {
+        double centre = 0, width = 0;
+        if (halfContrastRun(image, vertical, sl.coord, r.from, r.to, centre, width)) {
+          along = centre;
+          runWidth = std::min(runWidth, width);
+          px = vertical ? Eigen::Vector2d(sl.coord + 0.5, along) : Eigen::Vector2d(along, sl.coord + 0.5);
+          gs = groundScale(cm, px, params.lineWidth);
+          if (!gs.valid) continue;
+          expected = std::max(0.3, vertical ? gs.alongPx : gs.acrossPx);
+        }
+      }
+      const double thickness = runWidth;
       if (thickness > params.maxThicknessFactor * expected + 2) continue;
       // Inside an obstacle's box only paint with field right above and below it on a vertical
       // scan line counts (a line passing behind a robot's shoulder; a robot's parts are tall).
@@ -226,9 +270,9 @@ LineCandidates findLineCandidates(const CameraImage& image, const ScanLineRegion
                                   const BallPercept* ball) {
   LineCandidates c;
   std::vector<std::vector<int>> byScan;
-  collectSpots(regions.vertical, nullptr, true, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
+  collectSpots(image, regions.vertical, nullptr, true, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
   chainSpots(regions.vertical, c.spots, byScan, true, c.chains);
-  collectSpots(regions.horizontal, &regions.vertical, false, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
+  collectSpots(image, regions.horizontal, &regions.vertical, false, image.width, image.height, field, obstacles, cm, params, ball, c.spots, byScan);
   chainSpots(regions.horizontal, c.spots, byScan, false, c.chains);
   for (std::size_t i = 0; i < c.chains.size(); ++i)
     splitStraight(c.spots, c.chains[i], static_cast<int>(i), 0, static_cast<int>(c.chains[i].spots.size()) - 1,
@@ -352,52 +396,62 @@ double widthAcross(const CameraMatrix& cm, const Eigen::Vector2d& p, const Eigen
   return q ? std::abs((*q - p).dot(imageNormal)) : 0;
 }
 
+// The centre of a line's luminance across it at p (image normal n): the centroid of the
+// luminance above the field level beside it, within a window of about the line's expected
+// width. None where nothing line-like is there: too little contrast, or a window whose two
+// ends differ (an object's edge, other paint inside).
+std::optional<Eigen::Vector2d> centreAcross(const CameraImage& image, const CameraMatrix& cm, const Eigen::Vector2d& p,
+                                            const Eigen::Vector2d& n, const Eigen::Vector2d& groundNormal,
+                                            double lineWidth) {
+  std::array<double, 64> profile{};
+  const double w = widthAcross(cm, p, n, groundNormal, lineWidth);
+  if (w <= 0) return std::nullopt;
+  const double half = std::min(30.0, 0.5 * w + 2.5);
+  const double step = w < 6 ? 0.5 : 1.0;
+  const int count = std::min(63, static_cast<int>(2 * half / step) + 1);
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector2d q = p + (-half + i * step) * n;
+    if (!insideImage(image, q.x(), q.y(), 1)) return std::nullopt;
+    profile[i] = sampleColour(image, q.x(), q.y()).y;
+  }
+  const double base = 0.5 * (std::min(profile[0], profile[1]) + std::min(profile[count - 1], profile[count - 2]));
+  double peak = 0;
+  for (int i = 0; i < count; ++i) peak = std::max(peak, profile[i]);
+  if (peak - base < std::min(std::max(6.0, 0.15 * base), lineContrast(base))) return std::nullopt;
+  if (std::abs(profile[0] - profile[count - 1]) > 0.5 * (peak - base)) return std::nullopt;
+  const double level = base + 0.3 * (peak - base);
+  double sw = 0, so = 0;
+  for (int i = 0; i < count; ++i) {
+    const double wgt = std::max(0.0, profile[i] - level);
+    sw += wgt, so += wgt * (-half + i * step);
+  }
+  if (sw <= 0) return std::nullopt;
+  return p + (so / sw) * n;
+}
+
+// The ground direction's normal of the image segment a-b (none near the horizon).
+std::optional<Eigen::Vector2d> groundNormalOf(const CameraMatrix& cm, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const auto ga = cm.pixelToGround(a), gb = cm.pixelToGround(b);
+  if (!ga || !gb || (*gb - *ga).norm() < 1e-6) return std::nullopt;
+  const Eigen::Vector2d gd = (*gb - *ga).normalized();
+  return Eigen::Vector2d(-gd.y(), gd.x());
+}
+
 // Sub-pixel refinement: across the line at regular samples, the centroid of the luminance
 // above the field level beside it; the line is refitted through these centres. Region edges
 // on the scan lines are whole pixels; this is what makes short lines' directions exact.
 // Returns the refined points' residual (px), or a negative value when too few samples count.
 double refineAcross(const CameraImage& image, const CameraMatrix& cm, Merged& m, double lineWidth) {
   const Eigen::Vector2d a = m.centre + m.tMin * m.dir, b = m.centre + m.tMax * m.dir;
-  const auto ga = cm.pixelToGround(a), gb = cm.pixelToGround(b);
-  if (!ga || !gb || (*gb - *ga).norm() < 1e-6) return -1;
-  const Eigen::Vector2d gd = (*gb - *ga).normalized(), groundNormal(-gd.y(), gd.x());
+  const auto groundNormal = groundNormalOf(cm, a, b);
+  if (!groundNormal) return -1;
   const Eigen::Vector2d n(-m.dir.y(), m.dir.x());
   const double len = m.tMax - m.tMin;
   const int samples = std::clamp(static_cast<int>(len / 4), 4, 40);
   std::vector<Eigen::Vector2d> centres;
-  std::array<double, 64> profile{};
-  for (int k = 0; k < samples; ++k) {
-    const Eigen::Vector2d p = a + (k + 0.5) / samples * (b - a);
-    const double w = widthAcross(cm, p, n, groundNormal, lineWidth);
-    if (w <= 0) continue;
-    const double half = std::min(30.0, 0.5 * w + 2.5);
-    const double step = w < 6 ? 0.5 : 1.0;
-    const int count = std::min(63, static_cast<int>(2 * half / step) + 1);
-    bool inside = true;
-    for (int i = 0; i < count; ++i) {
-      const Eigen::Vector2d q = p + (-half + i * step) * n;
-      if (!insideImage(image, q.x(), q.y(), 1)) {
-        inside = false;
-        break;
-      }
-      profile[i] = sampleColour(image, q.x(), q.y()).y;
-    }
-    if (!inside) continue;
-    const double base = 0.5 * (std::min(profile[0], profile[1]) + std::min(profile[count - 1], profile[count - 2]));
-    double peak = 0;
-    for (int i = 0; i < count; ++i) peak = std::max(peak, profile[i]);
-    if (peak - base < std::min(std::max(6.0, 0.15 * base), lineContrast(base))) continue;
-    // Both ends must be near the field level (no other paint inside the window).
-    if (std::abs(profile[0] - profile[count - 1]) > 0.5 * (peak - base)) continue;
-    const double level = base + 0.3 * (peak - base);
-    double sw = 0, so = 0;
-    for (int i = 0; i < count; ++i) {
-      const double wgt = std::max(0.0, profile[i] - level);
-      sw += wgt, so += wgt * (-half + i * step);
-    }
-    if (sw <= 0) continue;
-    centres.push_back(p + (so / sw) * n);
-  }
+  for (int k = 0; k < samples; ++k)
+    if (const auto c = centreAcross(image, cm, a + (k + 0.5) / samples * (b - a), n, *groundNormal, lineWidth))
+      centres.push_back(*c);
   if (centres.size() < 4) return -1;
   auto [c, d] = fitLineTls(centres);
   // One round without outliers.
@@ -423,6 +477,50 @@ double refineAcross(const CameraImage& image, const CameraMatrix& cm, Merged& m,
   m.refined = static_cast<int>(keep.size());
   m.refinedPoints = keep;
   return std::sqrt(r2 / keep.size());
+}
+
+// A short candidate followed along its own pixels beyond each end: a profile across the line
+// every stepPx, centred where the line fitted so far predicts it, continues the line while
+// it shows one within 1.5 px of the prediction (two misses in a row end it); the line is
+// refitted through its spots and the centres found. For a line the scan grid crosses only a
+// few times (a goal box's side line 2-5 m away). Returns how many centres were added.
+int growAlong(const CameraImage& image, const CameraMatrix& cm, const ObstaclesPercept& obstacles,
+              const std::vector<LineSpot>& spots, Merged& m, double lineWidth, double stepPx, int maxSteps) {
+  std::vector<Eigen::Vector2d> points;
+  for (int k : m.spots) points.push_back(spots[k].image);
+  int added = 0;
+  for (const double side : {-1.0, 1.0}) {
+    int misses = 0;
+    double t = side < 0 ? m.tMin : m.tMax;
+    for (int k = 0; k < maxSteps && misses < 2; ++k) {
+      t += side * stepPx;
+      const Eigen::Vector2d p = m.centre + t * m.dir;
+      if (!insideImage(image, p.x(), p.y(), 2) || obstacles.contains(p.x(), p.y())) break;
+      const auto groundNormal = groundNormalOf(cm, m.centre + m.tMin * m.dir, m.centre + m.tMax * m.dir);
+      if (!groundNormal) break;
+      const Eigen::Vector2d n(-m.dir.y(), m.dir.x());
+      const auto c = centreAcross(image, cm, p, n, *groundNormal, lineWidth);
+      if (!c || (*c - p).norm() > 1.5) {
+        ++misses;
+        continue;
+      }
+      misses = 0;
+      points.push_back(*c);
+      ++added;
+      Eigen::Vector2d centre, dir;
+      std::tie(centre, dir) = fitLineTls(points);
+      if (dir.dot(m.dir) < 0) dir = -dir;
+      m.centre = centre;
+      m.dir = dir;
+      m.tMin = 1e9, m.tMax = -1e9;
+      for (const auto& q : points) {
+        const double u = (q - m.centre).dot(m.dir);
+        m.tMin = std::min(m.tMin, u), m.tMax = std::max(m.tMax, u);
+      }
+      t = side < 0 ? m.tMin : m.tMax;
+    }
+  }
+  return added;
 }
 
 // A chain that bends gently, always the same way, and fits the centre circle's radius on
@@ -558,13 +656,32 @@ std::vector<LinesPercept::Line> fitLines(const LineCandidates& candidates, const
         refit(m, spots);
       }
     }
+    // A short candidate may be a short line the scan grid crosses only a few times.
+    int grown = 0;
+    if (params.growStepPx > 0 && static_cast<int>(m.spots.size()) < params.minSpots && m.spots.size() >= 2)
+      grown = growAlong(image, cm, obstacles, spots, m, params.lineWidth, params.growStepPx, params.growMaxSteps);
     const double refinedResidual = refineAcross(image, cm, m, params.lineWidth);
     const Eigen::Vector2d i0 = m.centre + m.tMin * m.dir, i1 = m.centre + m.tMax * m.dir;
     auto reject = [&](const char* reason, double value) {
       if (rejected) rejected->push_back({i0, i1, static_cast<int>(m.spots.size()), reason, value});
     };
     // Few spots (a short line seen end-on) suffice when the line's own pixels confirm it.
-    if (static_cast<int>(m.spots.size()) < params.minSpots &&
+    const bool grownEnough = grown >= params.minGrown && refinedResidual >= 0;
+    // A piece grown along a line already reported is that line again.
+    if (grown > 0) {
+      const Eigen::Vector2d e0 = m.centre + m.tMin * m.dir, e1 = m.centre + m.tMax * m.dir;
+      const bool repeated = std::any_of(out.begin(), out.end(), [&](const LinesPercept::Line& l) {
+        const Eigen::Vector2d d = (l.imageTo - l.imageFrom).normalized();
+        auto off = [&](const Eigen::Vector2d& p) { return std::abs(d.x() * (p.y() - l.imageFrom.y()) - d.y() * (p.x() - l.imageFrom.x())); };
+        return std::abs(d.x() * m.dir.y() - d.y() * m.dir.x()) < std::sin(10 * M_PI / 180) && off(e0) < 4 + m.expected &&
+               off(e1) < 4 + m.expected;
+      });
+      if (repeated) {
+        reject("repeated", 0);
+        continue;
+      }
+    }
+    if (static_cast<int>(m.spots.size()) < params.minSpots && !grownEnough &&
         (static_cast<int>(m.spots.size()) < params.minSpotsRefined || refinedResidual < 0)) {
       reject("spots", static_cast<double>(m.spots.size()));
       continue;

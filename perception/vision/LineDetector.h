@@ -21,6 +21,10 @@ struct LineParams {
   double lineWidth = 0.05;        // m, SPL
   double circleRadius = 0.75;     // m: short pieces that bend like the centre circle are no lines
   double maxThicknessFactor = 3;  // a white run up to this many expected line widths (+2 px) is a spot
+  // A run wider than this many expected widths (+2 px) is measured again at half its contrast:
+  // centre and width. The regions of a soft-edged line include its ramps (real frames at 2-5
+  // m: runs of 9-13 px on a 5 px line), which moved the spots and broke their chains.
+  double halfContrastFactor = 1;
   double mergeWhiteRatio = 0.75;  // of the white test's pairs along a gap two segments are merged across
   // Two pieces are tried as one line when each one's ends lie within this many times the spot
   // tolerance of the other's line; the merged fit then keeps every spot within the tolerance.
@@ -37,6 +41,13 @@ struct LineParams {
   double unrefinedThickness = 0.6;
   int minSpotsRefined = 4;        // the same with a sub-pixel refinement (3-spot lines were mostly object edges on real images)
   double minLengthM = 0.25;       // per reported line (on the ground)
+  // A candidate with fewer than minSpots spots is followed along its own pixels beyond its ends
+  // (profiles across it every growStepPx, at most growMaxSteps per end; 0: never) and counts as
+  // a line when at least minGrown centres continue it: the scan grid crosses a short line far
+  // away only a few times (docs/vision/real/README.md).
+  double growStepPx = 3;
+  int growMaxSteps = 40;
+  int minGrown = 4;
   double maxDistanceM = 5;        // lines whose nearest point is farther are not reported
   double maxAngleSigmaDeg = 2;    // lines whose direction on the ground is less certain are not reported
   double spotSigmaPx = 0.5;       // least position error of a line spot (px)

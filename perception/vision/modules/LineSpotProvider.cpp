@@ -13,7 +13,7 @@ void LineSpotProvider::update() {
   params.lineWidth = geometry.lineWidth;
   params.circleRadius = geometry.circleRadius;
   static_cast<vision::LineCandidates&>(out<LineSpots>()) =
-      vision::findLineCandidates(in<CameraImage>(), in<ScanLineRegions>(), in<FieldColourReference>(),
+      vision::findLineCandidates(in<DenoisedImage>().image(in<CameraImage>()), in<ScanLineRegions>(), in<FieldColourReference>(),
                                  in<ObstaclesPercept>(), in<CameraMatrix>(), params, &in<BallPercept>());
 }
 
