@@ -284,7 +284,7 @@ TEST(LineSpotProvider, SpotsOnThePaintAndNoneInTheBall) {
   const CameraImage image = test::syntheticImage(cm, {}, segmentsPaint(kT));
   const Upstream up(image, cm);
   ModuleHarness h = harness<modules::LineSpotProvider>();
-  up.fixInto<CameraImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry,
+  up.fixInto<CameraImage, DenoisedImage, ScanLineRegions, FieldColourReference, ObstaclesPercept, CameraMatrix, VisionGeometry,
              BallPercept>(h);
   h.run();
   const LineSpots& spots = h.get<LineSpots>();
