@@ -665,22 +665,21 @@ std::vector<LinesPercept::Line> fitLines(const LineCandidates& candidates, const
     auto reject = [&](const char* reason, double value) {
       if (rejected) rejected->push_back({i0, i1, static_cast<int>(m.spots.size()), reason, value});
     };
-    // Few spots (a short line seen end-on) suffice when the line's own pixels confirm it.
-    const bool grownEnough = grown >= params.minGrown && refinedResidual >= 0;
     // A piece grown along a line already reported is that line again.
     if (grown > 0) {
-      const Eigen::Vector2d e0 = m.centre + m.tMin * m.dir, e1 = m.centre + m.tMax * m.dir;
       const bool repeated = std::any_of(out.begin(), out.end(), [&](const LinesPercept::Line& l) {
         const Eigen::Vector2d d = (l.imageTo - l.imageFrom).normalized();
         auto off = [&](const Eigen::Vector2d& p) { return std::abs(d.x() * (p.y() - l.imageFrom.y()) - d.y() * (p.x() - l.imageFrom.x())); };
-        return std::abs(d.x() * m.dir.y() - d.y() * m.dir.x()) < std::sin(10 * M_PI / 180) && off(e0) < 4 + m.expected &&
-               off(e1) < 4 + m.expected;
+        return std::abs(d.x() * m.dir.y() - d.y() * m.dir.x()) < std::sin(10 * M_PI / 180) && off(i0) < 4 + m.expected &&
+               off(i1) < 4 + m.expected;
       });
       if (repeated) {
         reject("repeated", 0);
         continue;
       }
     }
+    // Few spots (a short line seen end-on) suffice when the line's own pixels confirm it.
+    const bool grownEnough = grown >= params.minGrown && refinedResidual >= 0;
     if (static_cast<int>(m.spots.size()) < params.minSpots && !grownEnough &&
         (static_cast<int>(m.spots.size()) < params.minSpotsRefined || refinedResidual < 0)) {
       reject("spots", static_cast<double>(m.spots.size()));
