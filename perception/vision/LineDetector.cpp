@@ -602,9 +602,15 @@ std::vector<LinesPercept::Line> fitLines(const LineCandidates& candidates, const
         const double reach = params.mergeReach * tol;
         const Eigen::Vector2d b0 = b.centre + b.tMin * b.dir, b1 = b.centre + b.tMax * b.dir;
         const Eigen::Vector2d a0 = a.centre + a.tMin * a.dir, a1 = a.centre + a.tMax * a.dir;
-        if (distToLine(a, b0) > reach || distToLine(a, b1) > reach || distToLine(b, a0) > reach ||
-            distToLine(b, a1) > reach)
-          continue;
+        if (distToLine(a, b0) > reach || distToLine(a, b1) > reach) continue;
+        // The longer piece's ends near the shorter piece's line too -- unless both pieces are
+        // well measured (mergeKinkSpots each) and meet at a kink of at most mergeKinkDeg: a
+        // bent line (real tape bows by 1.5-2.5 px over 500 px), whose shorter piece's
+        // direction, extrapolated over the longer one, misses its far end. The merged fit's
+        // residuals decide.
+        const bool kink = std::min(a.spots.size(), b.spots.size()) >= static_cast<std::size_t>(params.mergeKinkSpots) &&
+                          std::abs(a.dir.x() * b.dir.y() - a.dir.y() * b.dir.x()) <= std::sin(params.mergeKinkDeg * M_PI / 180);
+        if (!kink && (distToLine(b, a0) > reach || distToLine(b, a1) > reach)) continue;
         Merged m = a;
         m.spots.insert(m.spots.end(), b.spots.begin(), b.spots.end());
         refit(m, spots);

@@ -31,6 +31,8 @@ struct LineParams {
   // A piece of three spots extrapolates its direction badly: at 1.0 the goal-box side line of
   // real frames stayed in pieces shorter than minLengthM (docs/vision/real/README.md).
   double mergeReach = 1.5;
+  double mergeKinkDeg = 3;        // see fitLines: pieces of a bent line
+  int mergeKinkSpots = 8;
   double lineWhiteRatio = 0.6;    // of the white test's pairs along a whole line to report it
   int minSpots = 4;               // per reported line
   // A line with fewer spots than this whose pixels do not refine (see refineAcross) must be
