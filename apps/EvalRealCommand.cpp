@@ -8,7 +8,6 @@
 //     another line in it is a false goal-box line;
 //   - the found lines' angles on the ground with the recorded matrix (right angles, parallels).
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -22,8 +21,6 @@
 #include "perception/RecordedCameraMatrix.h"
 #include "perception/vision/Annotate.h"
 #include "perception/vision/CameraPipeline.h"
-#include "perception/vision/ColourTests.h"
-#include "perception/vision/LineDetector.h"
 #include "perception/vision/VisionPipeline.h"
 #include "robot/Error.h"
 #include "robot/OutputFiles.h"
@@ -50,47 +47,6 @@ LabelOffset offsetFrom(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
   const Eigen::Vector2d d = (b - a).normalized(), l = (label.b - label.a).normalized();
   auto distance = [&](const Eigen::Vector2d& p) { return std::abs(d.x() * (p.y() - a.y()) - d.y() * (p.x() - a.x())); };
   return {std::acos(std::min(1.0, std::abs(d.dot(l)))) * 180 / M_PI, distance(label.a), distance(label.b)};
-}
-
-// The painted stripe along a labelled line, measured from the pixels alone: every 4 px between
-// 10 % and 90 % of the label (clear of the junctions), a profile across the label (+-12 px),
-// the centroid of the luminance above half the way from the darker end to the peak; the
-// centres' straight fit, one round without outliers (1.5 px). How far the label lies from it
-// says how precise the label is (none when fewer than 8 centres count).
-std::optional<LabelOffset> labelAgainstStripe(const CameraImage& img, const LabelledLine& label) {
-  const double len = (label.b - label.a).norm();
-  if (len < 20) return std::nullopt;
-  const Eigen::Vector2d u = (label.b - label.a) / len, n(-u.y(), u.x());
-  std::vector<Eigen::Vector2d> centres;
-  for (double t = 0.1 * len; t <= 0.9 * len; t += 4) {
-    const Eigen::Vector2d p = label.a + t * u;
-    std::array<double, 49> profile{};
-    bool inside = true;
-    for (int i = 0; i < 49 && inside; ++i) {
-      const Eigen::Vector2d q = p + (-12 + 0.5 * i) * n;
-      inside = vision::insideImage(img, q.x(), q.y(), 1);
-      if (inside) profile[i] = vision::sampleLuminance(img, q.x(), q.y());
-    }
-    if (!inside) continue;
-    const double base = std::min(profile.front(), profile.back());
-    const double peak = *std::max_element(profile.begin(), profile.end());
-    if (peak - base < 30 || std::abs(profile.front() - profile.back()) > 0.5 * (peak - base)) continue;
-    const double level = base + 0.5 * (peak - base);
-    double sw = 0, so = 0;
-    for (int i = 0; i < 49; ++i) {
-      const double w = std::max(0.0, profile[i] - level);
-      sw += w, so += w * (-12 + 0.5 * i);
-    }
-    centres.push_back(p + (so / sw) * n);
-  }
-  if (centres.size() < 8) return std::nullopt;
-  auto [c, d] = vision::fitLineTls(centres);
-  std::vector<Eigen::Vector2d> keep;
-  for (const auto& p : centres)
-    if (std::abs(d.x() * (p.y() - c.y()) - d.y() * (p.x() - c.x())) < 1.5) keep.push_back(p);
-  if (keep.size() < 8) return std::nullopt;
-  std::tie(c, d) = vision::fitLineTls(keep);
-  return offsetFrom(c - d, c + d, label);
 }
 
 // Whether a found image line (a, b) is the labelled one: both labelled points within 3 px of
@@ -140,7 +96,7 @@ int evalRealCommand(const EvalRealOptions& options) {
   std::map<CameraId, std::unique_ptr<CameraPipeline>> pipelines;
 
   nlohmann::json rows = nlohmann::json::array();
-  std::map<std::string, int> labelled, byVision, byVisionImprecise, bySample, stripeMeasured, labelOnStripe;
+  std::map<std::string, int> labelled, byVision, byVisionImprecise, bySample;
   int accepted = 0, right = 0, imprecise = 0, wrong = 0, labelledFrames = 0;
   std::map<std::string, int> reasons;
   std::vector<double> sampleAngles, labelAngles, sampleParallel;
@@ -191,12 +147,6 @@ int evalRealCommand(const EvalRealOptions& options) {
         return o ? nlohmann::json{{"angle_deg", o->angleDeg}, {"a_px", o->aPx}, {"b_px", o->bPx}} : nlohmann::json(nullptr);
       };
       found[l.name]["vision_nearest"] = offsetJson(nearest);
-      const auto stripe = labelAgainstStripe(img, l);
-      found[l.name]["label_vs_stripe"] = offsetJson(stripe);
-      if (stripe) {
-        ++stripeMeasured[l.name];
-        labelOnStripe[l.name] += stripe->within(kMaxDistancePx, kMaxAngleDeg);
-      }
       ++labelled[l.name];
       byVision[l.name] += v;
       byVisionImprecise[l.name] += nearest && !v;
@@ -276,8 +226,6 @@ int evalRealCommand(const EvalRealOptions& options) {
                     {"found_by_vision", byVision[name]},
                     {"vision_rate", static_cast<double>(byVision[name]) / count},
                     {"found_by_vision_imprecise", byVisionImprecise[name]},
-                    {"stripe_measured", stripeMeasured[name]},
-                    {"label_within_tolerance_of_stripe", labelOnStripe[name]},
                     {"found_by_sample", bySample[name]},
                     {"sample_rate", static_cast<double>(bySample[name]) / count}};
   nlohmann::json j;
@@ -307,9 +255,7 @@ int evalRealCommand(const EvalRealOptions& options) {
             << " with other lines)\n";
   for (const auto& [name, count] : labelled)
     std::cerr << "  " << name << ": found by the vision in " << byVision[name] << " of " << count << " (in "
-              << byVisionImprecise[name] << " more beyond 3 px or 2 deg), by the sample in " << bySample[name]
-              << "; the label lies within 3 px / 2 deg of the painted stripe in " << labelOnStripe[name] << " of the "
-              << stripeMeasured[name] << " where the stripe could be measured\n";
+              << byVisionImprecise[name] << " more beyond 3 px or 2 deg), by the sample in " << bySample[name] << "\n";
   for (const auto& [reason, count] : reasons) std::cerr << "  refused " << count << "x: " << reason << "\n";
   writeJson(options.common.json.empty() ? "-" : options.common.json, j);
   return 0;

@@ -353,15 +353,8 @@ TEST(EvalReal, ScoresEveryFrameAgainstItsLabels) {
   EXPECT_GE(right, 16);
   EXPECT_GE(j["labels"]["border_line"]["vision_rate"].get<double>(), 0.9);
   EXPECT_GE(j["labels"]["goal_box_line"]["vision_rate"].get<double>(), 0.87);
-  for (const auto& [name, l] : j["labels"].items()) {
+  for (const auto& [name, l] : j["labels"].items())
     EXPECT_EQ(l["found_by_vision_imprecise"].get<int>(), visionImprecise[name]) << name;
-    EXPECT_LE(l["label_within_tolerance_of_stripe"].get<int>(), l["stripe_measured"].get<int>()) << name;
-  }
-  // The stripe measured from the pixels alone agrees with the long, clear goal line's labels
-  // (39 of 39): the measurement is sound where the labels are.
-  EXPECT_GE(j["labels"]["border_line"]["stripe_measured"].get<int>(), 35);
-  EXPECT_GE(j["labels"]["border_line"]["label_within_tolerance_of_stripe"].get<int>(),
-            j["labels"]["border_line"]["stripe_measured"].get<int>() - 1);
   EXPECT_GT(pictures, 0);
 }
 
