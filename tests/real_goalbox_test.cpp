@@ -46,6 +46,22 @@ std::string tempFile(const std::string& name, const std::string& content) {
   return path;
 }
 
+// perceive on a real frame with its recorded matrix: the JSON it prints.
+nlohmann::json perceiveJson(const std::string& stem, const char* camera) {
+  const auto r = test::runCommand("perceive " + stem + ".jpg --camera " + camera + " --camera-matrix " + stem + ".json --json -");
+  EXPECT_EQ(r.code, 0) << r.out;
+  return nlohmann::json::parse(r.out.substr(r.out.find('{')));
+}
+
+// The farther of a label's two points from a sample line (its "image" end points).
+double labelOffPx(const nlohmann::json& line, const LabelledLine& label) {
+  const Eigen::Vector2d a(line["image"][0][0], line["image"][0][1]), b(line["image"][1][0], line["image"][1][1]);
+  const Eigen::Vector2d d = (b - a).normalized();
+  double worst = 0;
+  for (const auto& p : {label.a, label.b}) worst = std::max(worst, std::abs(d.x() * (p.y() - a.y()) - d.y() * (p.x() - a.x())));
+  return worst;
+}
+
 // The labelled lines' direction on the ground through the recorded matrix.
 Eigen::Vector2d groundDirection(const CameraMatrix& cm, const LabelledLine& l) {
   const auto a = cm.pixelToGround(l.a), b = cm.pixelToGround(l.b);
@@ -184,17 +200,12 @@ TEST(PerceiveRecorded, ReportsTheCalibrationSampleOfARealImage) {
   const auto& s = j["calibration_sample"];
   ASSERT_TRUE(s["accepted"].get<bool>()) << s.dump();
   // Its short line is the labelled connecting line (within 3 px of both labelled points).
-  const RecordedCameraMatrix rec = RecordedCameraMatrix::read(stem + ".json");
-  const auto& line = s["lines"]["short"]["image"];
-  const Eigen::Vector2d a(line[0][0], line[0][1]), b(line[1][0], line[1][1]);
-  const Eigen::Vector2d d = (b - a).normalized();
-  for (const auto& p : {rec.line("connecting_line")->a, rec.line("connecting_line")->b})
-    EXPECT_LT(std::abs(d.x() * (p.y() - a.y()) - d.y() * (p.x() - a.x())), 3.0);
+  EXPECT_LT(labelOffPx(s["lines"]["short"], *RecordedCameraMatrix::read(stem + ".json").line("connecting_line")), 3.0);
   EXPECT_LT(std::abs(s["residuals"]["right_angle1_deg"].get<double>()), 5.0);
   EXPECT_TRUE(fs::exists(png));
 
   // A refused one says which check failed.
-  const auto r2 = runCommand("perceive " + kDir + "/1687083893.jpg --camera-matrix " + kDir + "/1687083893.json --json -");
+  const auto r2 = runCommand("perceive " + kDir + "/1687083797.jpg --camera-matrix " + kDir + "/1687083797.json --json -");
   ASSERT_EQ(r2.code, 0) << r2.out;
   const auto j2 = nlohmann::json::parse(r2.out.substr(r2.out.find('{')));
   ASSERT_FALSE(j2["calibration_sample"]["accepted"].get<bool>());
@@ -207,9 +218,7 @@ TEST(PerceiveRecorded, ReportsTheCalibrationSampleOfARealImage) {
 // them come 4 deg near; its short line still lies 10 deg below.
 TEST(PerceiveRecorded, LongLinesNearTheHorizonGiveASampleOnlyWhereNothingElseDoes) {
   const std::string stem = kDir + "/1687086099";
-  const auto r = runCommand("perceive " + stem + ".jpg --camera bottom --camera-matrix " + stem + ".json --json -");
-  ASSERT_EQ(r.code, 0) << r.out;
-  const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+  const auto j = perceiveJson(stem, "bottom");
   const auto& s = j["calibration_sample"];
   ASSERT_TRUE(s["accepted"].get<bool>()) << s.dump();
   const CameraMatrix cm = RecordedCameraMatrix::read(stem + ".json").matrix;
@@ -224,12 +233,28 @@ TEST(PerceiveRecorded, LongLinesNearTheHorizonGiveASampleOnlyWhereNothingElseDoe
   EXPECT_GE(leastShort, 10 - 1e-6);
   EXPECT_LT(leastLong, 10);
   EXPECT_GE(leastLong, 4 - 1e-6);
-  const auto& line = s["lines"]["short"]["image"];
-  const Eigen::Vector2d a(line[0][0], line[0][1]), b(line[1][0], line[1][1]);
-  const Eigen::Vector2d d = (b - a).normalized();
+  EXPECT_LT(labelOffPx(s["lines"]["short"], *RecordedCameraMatrix::read(stem + ".json").line("connecting_line")), 3.0);
+}
+
+// A top-camera frame whose short line lies too close to its junctions for the paint edges to be
+// measured (the box 3-4 m away): the vision's sub-pixel centre lines stand in as the last
+// fallback (ExtractionOptions::visionCentreLines), on the labelled lines.
+TEST(PerceiveRecorded, TheVisionsCentreLinesStandInWhereTheEdgesCannotBeMeasured) {
+  const std::string stem = kDir + "/1687083883";
+  const auto j = perceiveJson(stem, "top");
+  const auto& s = j["calibration_sample"];
+  ASSERT_TRUE(s["accepted"].get<bool>()) << s.dump();
+  EXPECT_EQ(s["source"], "vision centre lines");
   const RecordedCameraMatrix rec = RecordedCameraMatrix::read(stem + ".json");
-  for (const auto& p : {rec.line("connecting_line")->a, rec.line("connecting_line")->b})
-    EXPECT_LT(std::abs(d.x() * (p.y() - a.y()) - d.y() * (p.x() - a.x())), 3.0);
+  EXPECT_LT(labelOffPx(s["lines"]["short"], *rec.line("connecting_line")), 3.0);
+  // The long lines in either order.
+  const double goalFirst = std::max(labelOffPx(s["lines"]["long1"], *rec.line("border_line")),
+                                    labelOffPx(s["lines"]["long2"], *rec.line("goal_box_line")));
+  const double boxFirst = std::max(labelOffPx(s["lines"]["long1"], *rec.line("goal_box_line")),
+                                   labelOffPx(s["lines"]["long2"], *rec.line("border_line")));
+  EXPECT_LT(std::min(goalFirst, boxFirst), 3.0);
+  EXPECT_LT(std::abs(s["residuals"]["right_angle1_deg"].get<double>()), 2.0);
+  EXPECT_LT(std::abs(s["residuals"]["right_angle2_deg"].get<double>()), 2.0);
 }
 
 // render --camera-matrix: the simulator's twin of a real frame. Seen through the same recorded
@@ -347,9 +372,9 @@ TEST(EvalReal, ScoresEveryFrameAgainstItsLabels) {
   EXPECT_EQ(s["labelled_lines_imprecise"], imprecise);
   EXPECT_EQ(s["other_lines"], other);
   EXPECT_EQ(other, 0) << "an accepted sample on lines that are not the goal box's";
-  // 29 of 39 measured, 17 of them within 3 px / 2 deg of the labels; the vision finds the
+  // 31 of 39 measured, 18 of them within 3 px / 2 deg of the labels; the vision finds the
   // goal-box front line in 36 (docs/vision/real/README.md); a vision change may move a frame or two.
-  EXPECT_GE(accepted, 26);
+  EXPECT_GE(accepted, 29);
   EXPECT_GE(right, 16);
   EXPECT_GE(j["labels"]["border_line"]["vision_rate"].get<double>(), 0.9);
   EXPECT_GE(j["labels"]["goal_box_line"]["vision_rate"].get<double>(), 0.87);

@@ -1,5 +1,6 @@
 #include "perception/calibration/SampleExtraction.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -58,6 +59,62 @@ bool clipBelowHorizon(const CameraMatrix& cm, ImageLine& e, double minDepression
   return (far - near).norm() >= minLengthPx;
 }
 
+// Each edge of a measured line kept below the (uncalibrated) horizon; false with the reason if
+// too little of it is left.
+bool keepBelowHorizon(LineMeasurement& line, int role, const CameraMatrix& coarse, const ExtractionOptions& o,
+                      double longDepressionDeg, std::string& reason) {
+  const double minDepressionDeg = role == ShortLine ? o.minDepressionDeg : longDepressionDeg;
+  const double minDepression = minDepressionDeg * std::numbers::pi / 180;
+  if (clipBelowHorizon(coarse, line.edgeA, minDepression, o.minClippedLengthPx) &&
+      clipBelowHorizon(coarse, line.edgeB, minDepression, o.minClippedLengthPx))
+    return true;
+  reason = std::string("implausible ") + kLineRoleNames[role] + " line: " +
+           fmt("less than %.0f px of it lies %.0f deg below the horizon", o.minClippedLengthPx, minDepressionDeg);
+  return false;
+}
+
+// Step 4: does the sample look like the goal box on the ground, with the offsets used so far?
+bool plausible(const CalibrationSample& sample, const CameraCalibration& current, const ExtractionOptions& o,
+               std::string& reason) {
+  CostOptions co;
+  co.goalBoxDepth = o.goalBoxDepth;
+  const CalibrationCost cost({sample}, co);
+  const SampleResiduals r = cost.sampleResiduals(current.toArray(), 0);
+  if (!r.projected) {
+    reason = "implausible: a goal box line does not reach the ground";
+    return false;
+  }
+  if (std::abs(r.angle1Deg) > o.maxAngleErrorDeg || std::abs(r.angle2Deg) > o.maxAngleErrorDeg) {
+    reason = fmt("implausible: the lines meet at %.1f and %.1f deg from a right angle on the ground (at most %.0f)",
+                 r.angle1Deg, r.angle2Deg, o.maxAngleErrorDeg);
+    return false;
+  }
+  const double ratio = (r.depthErrorM + o.goalBoxDepth) / o.goalBoxDepth;
+  if (ratio < o.minDepthRatio || ratio > o.maxDepthRatio) {
+    reason = fmt("implausible: the long lines are %.2f m apart on the ground (goal box: %.2f m, accepted %.2f-%.2f m)",
+                 r.depthErrorM + o.goalBoxDepth, o.goalBoxDepth, o.minDepthRatio * o.goalBoxDepth,
+                 o.maxDepthRatio * o.goalBoxDepth);
+    return false;
+  }
+  return true;
+}
+
+// A painted line measured by the vision's sub-pixel centre line instead of its edges: the two
+// edges half a line's width either side of it on the ground (with the coarse matrix), so that
+// their bisector on the ground, which the cost takes, is the vision's line.
+std::optional<LineMeasurement> edgesAroundCentre(const ImageSegment& centre, const CameraMatrix& coarse, double lineWidth) {
+  const auto g0 = coarse.pixelToGround(centre.from), g1 = coarse.pixelToGround(centre.to);
+  if (!g0 || !g1 || (*g1 - *g0).norm() < 1e-6) return std::nullopt;
+  const Eigen::Vector2d d = (*g1 - *g0).normalized(), n(-d.y(), d.x());
+  LineMeasurement m;
+  const auto a0 = coarse.projectGround(*g0 + lineWidth / 2 * n), a1 = coarse.projectGround(*g1 + lineWidth / 2 * n);
+  const auto b0 = coarse.projectGround(*g0 - lineWidth / 2 * n), b1 = coarse.projectGround(*g1 - lineWidth / 2 * n);
+  if (!a0 || !a1 || !b0 || !b1) return std::nullopt;
+  m.edgeA = {*a0, *a1};
+  m.edgeB = {*b0, *b1};
+  return m;
+}
+
 // Steps 3 and 4 for one candidate: the sample, or nullopt with the reason.
 // proto: the sample's capture data (camera, intrinsics, joints and IMU or a recorded pose).
 std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const GradientImage& gradients,
@@ -84,8 +141,6 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
                                   refineLine(gradients, det.longLine2, long2Excl, longOpts)};
   CalibrationSample sample = proto;
   for (int l = 0; l < 3; ++l) {
-    const double minDepressionDeg = l == 0 ? o.minDepressionDeg : longDepressionDeg;
-    const double minDepression = minDepressionDeg * std::numbers::pi / 180;
     if (!refined[l].ok) {
       reason = std::string("occluded or unclear ") + kLineRoleNames[l] + " line: " + refined[l].reason;
       return std::nullopt;
@@ -96,35 +151,9 @@ std::optional<CalibrationSample> measure(const GoalBoxSideDetection& det, const 
       return std::nullopt;
     }
     sample.lines[l] = refined[l].measurement;
-    if (!clipBelowHorizon(coarse, sample.lines[l].edgeA, minDepression, o.minClippedLengthPx) ||
-        !clipBelowHorizon(coarse, sample.lines[l].edgeB, minDepression, o.minClippedLengthPx)) {
-      reason = std::string("implausible ") + kLineRoleNames[l] + " line: " +
-               fmt("less than %.0f px of it lies %.0f deg below the horizon", o.minClippedLengthPx, minDepressionDeg);
-      return std::nullopt;
-    }
+    if (!keepBelowHorizon(sample.lines[l], l, coarse, o, longDepressionDeg, reason)) return std::nullopt;
   }
-
-  // 4: does it look like the goal box on the ground, with the offsets used so far?
-  CostOptions co;
-  co.goalBoxDepth = o.goalBoxDepth;
-  const CalibrationCost cost({sample}, co);
-  const SampleResiduals r = cost.sampleResiduals(current.toArray(), 0);
-  if (!r.projected) {
-    reason = "implausible: a goal box line does not reach the ground";
-    return std::nullopt;
-  }
-  if (std::abs(r.angle1Deg) > o.maxAngleErrorDeg || std::abs(r.angle2Deg) > o.maxAngleErrorDeg) {
-    reason = fmt("implausible: the lines meet at %.1f and %.1f deg from a right angle on the ground (at most %.0f)",
-                 r.angle1Deg, r.angle2Deg, o.maxAngleErrorDeg);
-    return std::nullopt;
-  }
-  const double ratio = (r.depthErrorM + o.goalBoxDepth) / o.goalBoxDepth;
-  if (ratio < o.minDepthRatio || ratio > o.maxDepthRatio) {
-    reason = fmt("implausible: the long lines are %.2f m apart on the ground (goal box: %.2f m, accepted %.2f-%.2f m)",
-                 r.depthErrorM + o.goalBoxDepth, o.goalBoxDepth, o.minDepthRatio * o.goalBoxDepth,
-                 o.maxDepthRatio * o.goalBoxDepth);
-    return std::nullopt;
-  }
+  if (!plausible(sample, current, o, reason)) return std::nullopt;
   return sample;
 }
 
@@ -264,13 +293,41 @@ ExtractionResult extract(const CameraImage& image, const CameraMatrix& coarse, c
   // No sample: the same candidates, in the same order, with the long lines allowed nearer the
   // horizon. Last, so that every first-pass sample stays as it was. The reason kept is the
   // first pass's.
-  if (o.longLinesFallbackDepressionDeg < o.minDepressionDeg) {
-    const ExtractionResult refusedFirst = out;
+  const ExtractionResult refusedFirst = out;
+  if (o.longLinesFallbackDepressionDeg < o.minDepressionDeg)
     for (const Attempt& a : attempts)
       if (measureCandidates(a, o.longLinesFallbackDepressionDeg)) return out;
-    return refusedFirst;
+  // Still none: the vision's own lines as the measurement, where their edges could not be
+  // measured (a short line 3-5 m away, too little of it clear of the junctions) or their
+  // junction is flatter than the finder takes (the box seen along the goal line). The vision's
+  // lines are sub-pixel centre lines (LineDetector's refinement); the checks are those above.
+  if (o.visionCentreLines && !visionSegments.empty()) {
+    FinderOptions flat = o.finder;
+    flat.minAngleDeg = std::min(flat.minAngleDeg, o.visionCentreMinAngleDeg);
+    std::vector<GoalBoxSideDetection> candidates = findGoalBoxSideCandidates(visionSegments, image.width, image.height, flat);
+    for (std::size_t c = 0; c < candidates.size() && c < static_cast<std::size_t>(o.maxCandidates); ++c) {
+      const GoalBoxSideDetection& d = candidates[c];
+      CalibrationSample sample = proto;
+      const ImageSegment* segs[3] = {&d.shortLine, &d.longLine1, &d.longLine2};
+      std::string reason;
+      bool ok = true;
+      for (int l = 0; l < 3 && ok; ++l) {
+        const auto m = edgesAroundCentre(*segs[l], coarse, o.lineWidth);
+        ok = m.has_value();
+        if (ok) sample.lines[l] = *m;
+        ok = ok && keepBelowHorizon(sample.lines[l], l, coarse, o, o.longLinesFallbackDepressionDeg, reason);
+      }
+      if (ok && plausible(sample, current, o, reason)) {
+        out.segments = visionSegments;
+        out.detection = d;
+        out.sample = sample;
+        out.source = "vision centre lines";
+        out.reason.clear();
+        return out;
+      }
+    }
   }
-  return out;
+  return refusedFirst;
 }
 
 ExtractionResult refused(std::string reason) {

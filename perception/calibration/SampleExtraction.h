@@ -58,13 +58,18 @@ struct ExtractionOptions {
   // Goal box candidates tried, best first. On the real goal-box frames the right one was 5th
   // to 8th where far lines gave more junctions (docs/vision/real/README.md).
   int maxCandidates = 8;
+  // Last, where nothing else gives a sample: the vision's lines themselves as the measurement
+  // (their sub-pixel centre lines instead of the paint edges), the goal box found among them
+  // down to this angle between the short and a long line in the image.
+  bool visionCentreLines = true;
+  double visionCentreMinAngleDeg = 10;
 };
 
 struct ExtractionResult {
   std::optional<CalibrationSample> sample;
   std::string reason;                     // when there is no sample
   std::vector<ImageSegment> segments;     // what the finder worked on
-  std::string source;                     // of the segments that gave the sample: "vision", "lsd" or "vision+lsd"
+  std::string source;                     // of the segments that gave the sample: "vision", "lsd", "vision+lsd" or "vision centre lines"
   GoalBoxSideDetection detection;
 };
 
