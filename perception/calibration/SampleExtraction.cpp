@@ -299,14 +299,18 @@ ExtractionResult extract(const CameraImage& image, const CameraMatrix& coarse, c
       if (measureCandidates(a, o.longLinesFallbackDepressionDeg)) return out;
   // Still none: the vision's own lines as the measurement, where their edges could not be
   // measured (a short line 3-5 m away, too little of it clear of the junctions) or their
-  // junction is flatter than the finder takes (the box seen along the goal line). The vision's
+  // junction is flatter than the finder takes (the box seen along the goal line), or the vision
+  // saw only a piece of the short line (a validated line all the same). The vision's
   // lines are sub-pixel centre lines (LineDetector's refinement); the checks are those above.
   if (o.visionCentreLines && !visionSegments.empty()) {
     FinderOptions flat = o.finder;
     flat.minAngleDeg = std::min(flat.minAngleDeg, o.visionCentreMinAngleDeg);
+    flat.minShortLengthPx = std::min(flat.minShortLengthPx, o.visionCentreMinShortPx);
     std::vector<GoalBoxSideDetection> candidates = findGoalBoxSideCandidates(visionSegments, image.width, image.height, flat);
     for (std::size_t c = 0; c < candidates.size() && c < static_cast<std::size_t>(o.maxCandidates); ++c) {
       const GoalBoxSideDetection& d = candidates[c];
+      // The box's short side spans its junctions, however little of it the vision saw.
+      if ((d.junction1 - d.junction2).norm() < o.finder.minShortLengthPx) continue;
       CalibrationSample sample = proto;
       const ImageSegment* segs[3] = {&d.shortLine, &d.longLine1, &d.longLine2};
       std::string reason;

@@ -60,9 +60,11 @@ struct ExtractionOptions {
   int maxCandidates = 8;
   // Last, where nothing else gives a sample: the vision's lines themselves as the measurement
   // (their sub-pixel centre lines instead of the paint edges), the goal box found among them
-  // down to this angle between the short and a long line in the image.
+  // down to this angle between the short and a long line in the image, with a piece of the
+  // short line this long (its junctions still finder.minShortLengthPx apart).
   bool visionCentreLines = true;
   double visionCentreMinAngleDeg = 10;
+  double visionCentreMinShortPx = 15;
 };
 
 struct ExtractionResult {
