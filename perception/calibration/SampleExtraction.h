@@ -7,6 +7,8 @@
 //      junctions, 4. sanity checks with the uncalibrated projection: the refined lines must
 //      look roughly like the goal box on the ground (right angles, depth) -- loose enough for
 //      several degrees of miscalibration, tight enough to throw out other line pairs.
+// Last, where no source gives a sample, the vision's sub-pixel centre lines stand for the
+// refined edges (ExtractionOptions::visionCentreLines), with the same checks.
 #include <optional>
 #include <string>
 #include <vector>
