@@ -333,9 +333,9 @@ TEST(PerceiveRecorded, BadImagesAndMatricesExitTwoWithOneLine) {
 }
 
 // eval real over the 39 frames: the figures are consistent with each other and with the frames,
-// no accepted sample holds a line other than the labelled ones, and the vision finds the goal
-// line (long and near) in at least 90 % of the frames. (The issue's targets for the goal box's
-// other lines and the samples are not reached yet: docs/vision/real/README.md.)
+// no accepted sample holds a line other than the labelled ones, at least 80 % of the frames give
+// a sample, and the vision finds each of the three labelled lines in at least 90 % of them (on
+// the labelled paint; docs/vision/real/README.md, "How precise are the labels").
 TEST(EvalReal, ScoresEveryFrameAgainstItsLabels) {
   const std::string json = std::string(::testing::TempDir()) + "eval_real.json";
   const std::string failures = std::string(::testing::TempDir()) + "eval_real_failures";
@@ -347,7 +347,7 @@ TEST(EvalReal, ScoresEveryFrameAgainstItsLabels) {
   ASSERT_EQ(j["frames"].size(), 39u);
   const auto& s = j["calibration_samples"];
   int accepted = 0, right = 0, imprecise = 0, other = 0, pictures = 0;
-  std::map<std::string, int> visionImprecise;
+  std::map<std::string, int> visionPrecise;
   for (const auto& f : j["frames"]) {
     const bool a = f["calibration_sample"]["accepted"];
     accepted += a;
@@ -361,18 +361,26 @@ TEST(EvalReal, ScoresEveryFrameAgainstItsLabels) {
     bool allVision = true;
     for (const auto& [name, found] : f["labels_found"].items()) {
       allVision = allVision && found["vision"].get<bool>();
+      // The paint's half width widens the 3 px at each labelled point: 5 cm are 1-25 px here.
+      for (const auto& t : found["paint_tolerance_px"]) {
+        EXPECT_GE(t.get<double>(), 3) << name;
+        EXPECT_LE(t.get<double>(), 3 + 12.5) << name;
+      }
       // The nearest of the vision's lines: within 3 px / 2 deg exactly when the label counts as
-      // found, and never further than the same line's 10 px / 5 deg.
+      // found precisely (and then it is found), never further than the same line's 10 px / 5 deg.
       const auto& near = found["vision_nearest"];
       if (near.is_null()) {
-        EXPECT_FALSE(found["vision"].get<bool>()) << name;
+        EXPECT_FALSE(found["vision_precise"].get<bool>()) << name;
         continue;
       }
       const bool within = near["angle_deg"].get<double>() <= 2 && near["a_px"].get<double>() <= 3 && near["b_px"].get<double>() <= 3;
-      EXPECT_EQ(within, found["vision"].get<bool>()) << name << " " << near.dump();
+      EXPECT_EQ(within, found["vision_precise"].get<bool>()) << name << " " << near.dump();
+      if (within) {
+        EXPECT_TRUE(found["vision"].get<bool>()) << name;
+      }
       EXPECT_LE(near["angle_deg"].get<double>(), 5);
       EXPECT_LE(std::max(near["a_px"].get<double>(), near["b_px"].get<double>()), 10);
-      visionImprecise[name] += !within;
+      visionPrecise[name] += within;
     }
     const bool failure = !allVision || v != "labelled lines";
     const std::string stem = fs::path(f["image"].get<std::string>()).stem().string();
@@ -384,14 +392,14 @@ TEST(EvalReal, ScoresEveryFrameAgainstItsLabels) {
   EXPECT_EQ(s["labelled_lines_imprecise"], imprecise);
   EXPECT_EQ(s["other_lines"], other);
   EXPECT_EQ(other, 0) << "an accepted sample on lines that are not the goal box's";
-  // 32 of 39 measured, 18 of them within 3 px / 2 deg of the labels; the vision finds the
-  // goal-box front line in 36 (docs/vision/real/README.md); a vision change may move a frame or two.
-  EXPECT_GE(accepted, 30);
+  // 32 of 39 measured, 18 of them within 3 px / 2 deg of the labels; the vision finds the goal
+  // line and the front line on all 39, the side line on 37 (docs/vision/real/README.md).
+  EXPECT_GE(accepted, 0.8 * 39);
   EXPECT_GE(right, 16);
-  EXPECT_GE(j["labels"]["border_line"]["vision_rate"].get<double>(), 0.9);
-  EXPECT_GE(j["labels"]["goal_box_line"]["vision_rate"].get<double>(), 0.87);
+  for (const char* name : {"border_line", "goal_box_line", "connecting_line"})
+    EXPECT_GE(j["labels"][name]["vision_rate"].get<double>(), 0.9) << name;
   for (const auto& [name, l] : j["labels"].items())
-    EXPECT_EQ(l["found_by_vision_imprecise"].get<int>(), visionImprecise[name]) << name;
+    EXPECT_EQ(l["found_by_vision_precise"].get<int>(), visionPrecise[name]) << name;
   EXPECT_GT(pictures, 0);
 }
 
@@ -410,7 +418,41 @@ TEST(EvalReal, TheVisionJoinsTheBoxSideLineSeenInPieces) {
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(slurp(json));
   ASSERT_EQ(j["frames"].size(), 1u);
-  EXPECT_TRUE(j["frames"][0]["labels_found"]["connecting_line"]["vision"].get<bool>()) << j["frames"][0].dump();
+  EXPECT_TRUE(j["frames"][0]["labels_found"]["connecting_line"]["vision_precise"].get<bool>()) << j["frames"][0].dump();
+}
+
+// A labelled line is found when the vision's line runs through the labelled paint: on this
+// near frame the side line's label ends on the goal line's far edge, 6.8 px from the paint's
+// centre where the paint is 16 px wide, so the vision's line on the paint is found but not
+// within 3 px of the label. Moved 16 px across (beyond the paint's half width + 3 px at both
+// ends), the same label is found by nothing.
+TEST(EvalReal, ALabelledLineIsFoundOnItsPaintAndNowhereElse) {
+  auto evalWith = [](const std::string& name, double shiftPx) {
+    const fs::path dir = fs::path(::testing::TempDir()) / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy_file(kDir + "/1687083847.jpg", dir / "1687083847.jpg");
+    nlohmann::json label = nlohmann::json::parse(slurp(kDir + "/1687083847.json"));
+    auto& c = label["crossings"];
+    const double ax = c["connecting_line_0"][0], ay = c["connecting_line_0"][1];
+    const double bx = c["connecting_line_1"][0], by = c["connecting_line_1"][1];
+    const double len = std::hypot(bx - ax, by - ay), nx = -(by - ay) / len, ny = (bx - ax) / len;
+    c["connecting_line_0"] = {ax + shiftPx * nx, ay + shiftPx * ny};
+    c["connecting_line_1"] = {bx + shiftPx * nx, by + shiftPx * ny};
+    std::ofstream(dir / "1687083847.json") << label.dump();
+    const std::string json = (dir / "eval.json").string();
+    const auto r = runCommand("eval real --dir " + dir.string() + " --json " + json);
+    EXPECT_EQ(r.code, 0) << r.out;
+    return nlohmann::json::parse(slurp(json))["frames"][0]["labels_found"]["connecting_line"];
+  };
+  const auto asLabelled = evalWith("real_label_at_edge", 0);
+  EXPECT_TRUE(asLabelled["vision"].get<bool>()) << asLabelled.dump();
+  EXPECT_FALSE(asLabelled["vision_precise"].get<bool>()) << asLabelled.dump();
+  for (double shift : {-16.0, 16.0}) {
+    const auto moved = evalWith("real_label_moved", shift);
+    EXPECT_FALSE(moved["vision"].get<bool>()) << shift << " " << moved.dump();
+    EXPECT_FALSE(moved["vision_precise"].get<bool>()) << shift;
+  }
 }
 
 }  // namespace
