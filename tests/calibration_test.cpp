@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 
 #include <opencv2/imgcodecs.hpp>
@@ -27,6 +28,24 @@ constexpr double kDeg = M_PI / 180;
 
 FieldDimensions field() { return FieldDimensions{}; }
 
+// The sample of view v of the painted box side, its long lines turned about their junctions
+// (rad), with the true offsets.
+std::optional<CalibrationSample> exactSample(const GoalBoxSide& painted, const CalibrationView& v, const CameraCalibration& truth,
+                                             double turn1, double turn2) {
+  SyntheticScene scene;
+  scene.side = painted;
+  scene.robotPose = v.robotPose;
+  scene.longLine1Turn = turn1;
+  scene.longLine2Turn = turn2;
+  scene.imuAngle = {0.01, -0.02};  // a slightly tilted torso: the IMU angles enter the model
+  JointArray joints = StandController::standPosture();
+  joints[HeadYaw] = v.headYaw;
+  joints[HeadPitch] = v.headPitch;
+  const auto s = synthesizeSample(scene, joints, v.camera, truth, CameraIntrinsics::nominal(v.camera));
+  EXPECT_TRUE(s.has_value());
+  return s;
+}
+
 // Exact samples of the own goal box's right side from the calibration position, at the
 // planned views (5 pan angles per camera), for the true offsets `truth`.
 std::vector<CalibrationSample> exactSamples(const CameraCalibration& truth, const Eigen::Vector3d& poseError = {0, 0, 0},
@@ -36,19 +55,9 @@ std::vector<CalibrationSample> exactSamples(const CameraCalibration& truth, cons
   side.lCorner += paintedDepthError * (side.lCorner - side.tJunction).normalized();
   const Eigen::Vector3d pos = calibrationPosition(side, plan);
   std::vector<CalibrationSample> out;
-  for (const CalibrationView& v : planViews(side, pos.head<2>(), StandController::standPosture(), plan)) {
-    SyntheticScene scene;
-    scene.side = side;
-    scene.robotPose = v.robotPose + poseError;
-    scene.longLine1Turn = turn1;
-    scene.longLine2Turn = turn2;
-    scene.imuAngle = {0.01, -0.02};  // a slightly tilted torso: the IMU angles enter the model
-    JointArray joints = StandController::standPosture();
-    joints[HeadYaw] = v.headYaw;
-    joints[HeadPitch] = v.headPitch;
-    const auto s = synthesizeSample(scene, joints, v.camera, truth, CameraIntrinsics::nominal(v.camera));
-    EXPECT_TRUE(s.has_value());
-    if (s) out.push_back(*s);
+  for (CalibrationView v : planViews(side, pos.head<2>(), StandController::standPosture(), plan)) {
+    v.robotPose += poseError;
+    if (auto s = exactSample(side, v, truth, turn1, turn2)) out.push_back(*s);
   }
   return out;
 }
@@ -550,20 +559,8 @@ std::vector<CalibrationSample> samplesOf(const std::vector<ViewSet>& sets, const
     GoalBoxSide painted = planned;
     painted.lCorner += depthError * (planned.lCorner - planned.tJunction).normalized();
     const Eigen::Vector3d pos = calibrationPosition(planned, plan);
-    for (const CalibrationView& v : planViews(planned, pos.head<2>(), StandController::standPosture(), plan)) {
-      SyntheticScene scene;
-      scene.side = painted;
-      scene.robotPose = v.robotPose;
-      scene.longLine1Turn = turn1;
-      scene.longLine2Turn = turn2;
-      scene.imuAngle = {0.01, -0.02};
-      JointArray joints = StandController::standPosture();
-      joints[HeadYaw] = v.headYaw;
-      joints[HeadPitch] = v.headPitch;
-      const auto s = synthesizeSample(scene, joints, v.camera, truth, CameraIntrinsics::nominal(v.camera));
-      EXPECT_TRUE(s.has_value());
-      if (s) out.push_back(*s);
-    }
+    for (const CalibrationView& v : planViews(planned, pos.head<2>(), StandController::standPosture(), plan))
+      if (auto s = exactSample(painted, v, truth, turn1, turn2)) out.push_back(*s);
   }
   return out;
 }
