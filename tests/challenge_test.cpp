@@ -225,6 +225,66 @@ TEST(CalibrateCameras, TheGoalBoxInViewDecidesTheStartSide) {
   EXPECT_EQ(decide(std::nullopt, -3.0, 5.0, 3.2), std::make_pair(1, std::string("localization")));
 }
 
+// The far views (CalibrateCameras::Params::farDistance): after the planned views at the
+// calibration position the robot steps back to farDistance from the box's short line and takes
+// farPans pans with each camera; each view's walk target is that place, facing where the plan
+// says. Without them the plan is the ten views in place, as before.
+TEST(CalibrateCameras, TheFarViewsAreTakenFromTheFarDistance) {
+  const BallModel ball;
+  const GameState game;
+  const FallState fall;
+  MotionInfo motion;
+  motion.walkToReached = true;  // every walk arrives at once
+  const BehaviorCommand command;
+  const CalibrationStatus status;  // no view answered: each one times out
+  const CameraCalibration current;
+  const FieldDimensions field = standardField();
+  auto run = [&](double farDistance) {
+    behavior::CalibrateCameras::Params params;
+    params.farDistance = farDistance;
+    behavior::CalibrateCameras c(field, StandController::standPosture(), params);
+    c.restart(0);
+    RobotPose pose;
+    pose.valid = true;
+    pose.pose = Pose2(-3.2, -3.0, M_PI / 2);  // believed on the right side line; odometry at identity
+    CameraPercepts p;
+    p.processed = true;
+    std::vector<Pose2> targets;  // each view's walk target (odometry frame = field frame from the start here)
+    for (double t = 0; t <= 120 && c.state() != behavior::CalibrateCameras::State::Solve; t += 1.0 / 30) {
+      p.timestamp = t;
+      const behavior::BehaviorInput in{t, pose, ball, game, fall, motion, command};
+      const auto out = c.run(in, status, current, p);
+      if (c.state() == behavior::CalibrateCameras::State::Collect && out.calibration.viewId > 0 &&
+          (targets.size() < static_cast<std::size_t>(out.calibration.viewId)))
+        targets.push_back(out.motion.walkTarget);
+    }
+    return std::make_pair(c.summary().views, targets);
+  };
+  const auto [nearOnly, nearTargets] = run(0);
+  EXPECT_EQ(nearOnly, 10);
+  const auto [withFar, targets] = run(1.8);
+  ASSERT_EQ(withFar, 16);
+  ASSERT_EQ(targets.size(), 16u);
+  // The robot never moved and its odometry is the identity, so the targets are relative to the
+  // start (-3.2, -3, 90 deg), from where the views were planned (it saw no short line to align on).
+  const Pose2 start(calibration::initialPosition(field, -1).x(), calibration::initialPosition(field, -1).y(),
+                    calibration::initialPosition(field, -1).z());
+  const calibration::GoalBoxSide side = calibration::ownGoalBoxSide(field, -1);
+  const double nearDistance = (start.translation() - side.middle()).norm();
+  for (int k = 0; k < 16; ++k) {
+    const Pose2 at = start * targets[k];
+    const double d = (at.translation() - side.middle()).norm();
+    EXPECT_NEAR(d, k < 10 ? nearDistance : 1.8, 1e-6) << "view " << k + 1;
+    if (k < 10) {
+      EXPECT_NEAR(targets[k].translation().norm(), 0, 1e-9) << "the near views turn in place";
+    }
+  }
+  // The far place lies on the line from the short line's middle through the near one.
+  const Eigen::Vector2d awayNear = (start.translation() - side.middle()).normalized();
+  const Eigen::Vector2d awayFar = ((start * targets[12]).translation() - side.middle()).normalized();
+  EXPECT_NEAR(awayNear.dot(awayFar), 1, 1e-9);
+}
+
 TEST(ChallengeTasks, TheBallSentenceInMillimetres) {
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(1.2345, -0.0004)), "The ball is at: 1235 0");
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(-0.12, 2.7)), "The ball is at: -120 2700");

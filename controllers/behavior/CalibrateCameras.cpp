@@ -69,6 +69,12 @@ Pose2 CalibrateCameras::turnTarget(double heading) const {
   return anchor_.odometry * Pose2(0, 0, Pose2::wrap(heading - anchor_.pose.theta));
 }
 
+Pose2 CalibrateCameras::viewTarget(const Eigen::Vector3d& robotPose) const {
+  // At the anchor: a turn in place (exactly, as before the far views).
+  if ((robotPose.head<2>() - Eigen::Vector2d(anchor_.pose.x, anchor_.pose.y)).norm() < 1e-9) return turnTarget(robotPose.z());
+  return anchor_.odometry * (anchor_.pose.inverse() * Pose2(robotPose.x(), robotPose.y(), robotPose.z()));
+}
+
 void CalibrateCameras::nextView(double time, Output& out) {
   while (current_ < views_.size() && views_[current_].taken) ++current_;
   if (current_ >= views_.size()) {
@@ -96,9 +102,19 @@ void CalibrateCameras::planViewsFromHere(const RobotPose& here, bool aligned, do
   anchor_ = here;
   if (aligned) anchor_.pose = Pose2(position_.x(), position_.y(), position_.z());
   views_.clear();
-  for (const calibration::CalibrationView& v :
-       calibration::planViews(side_, Eigen::Vector2d(anchor_.pose.x, anchor_.pose.y), stand_))
-    views_.push_back({v, 0, false});
+  const Eigen::Vector2d at(anchor_.pose.x, anchor_.pose.y);
+  for (const calibration::CalibrationView& v : calibration::planViews(side_, at, stand_)) views_.push_back({v, 0, false});
+  if (params_.farDistance > 0) {
+    // The far views: farDistance from the short line's middle, on the line from it through here.
+    calibration::ViewPlanOptions far;
+    far.distance = params_.farDistance;
+    far.topYawsDeg.clear();
+    for (int k = 0; k < params_.farPans; ++k) far.topYawsDeg.push_back(-45 + 90.0 * k / (params_.farPans - 1));
+    far.bottomYawsDeg = far.topYawsDeg;
+    const Eigen::Vector2d away = (at - side_.middle()).normalized();
+    const Eigen::Vector2d there = side_.middle() + params_.farDistance * away;
+    for (const calibration::CalibrationView& v : calibration::planViews(side_, there, stand_, far)) views_.push_back({v, 0, false});
+  }
   current_ = 0;
   nextView(time, out);
 }
@@ -197,7 +213,7 @@ CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const Ca
   auto stand = [&] { out.motion = MotionRequest{}; };
   auto turnAndAim = [&](const PlannedView& p) {
     out.motion.motion = MotionType::WalkTo;
-    out.motion.walkTarget = turnTarget(p.view.robotPose.z());
+    out.motion.walkTarget = viewTarget(p.view.robotPose);
     out.motion.walkTargetInOdometry = true;
     out.motion.walkTargetId = walkId_;
     out.lookActive = false;

@@ -53,6 +53,12 @@ class CalibrateCameras {
     double alignDistance = 0.04;   // m: aligned when the short line's middle is this near straight ahead ...
     double alignAngle = 0.05;      // rad: ... and the line this near square to the view
     int alignSteps = 4;            // alignment walks at most; then it goes on from where it stands
+    // Views from a second distance (docs/calibration/README.md, "Telling the paint from the
+    // cameras"): after the planned views the robot steps back to this distance from the short
+    // line and takes farPans pans (over +-45 deg) with each camera. 0: none (the Calibrator's
+    // paint unknowns need them).
+    double farDistance = 0;        // m
+    int farPans = 3;
   };
   enum class State { Localize, GoToPosition, Align, Turn, Collect, Solve, Apply, Verify, Report, Done };
 
@@ -101,6 +107,9 @@ class CalibrateCameras {
   void startRound(double time, Output& out);
   // The odometry target that turns the body in place to a field heading.
   Pose2 turnTarget(double heading) const;
+  // The odometry target of a view's field pose (planned from the anchor: a turn in place, or a
+  // step back to the far views' place and a turn).
+  Pose2 viewTarget(const Eigen::Vector3d& robotPose) const;
   void planViewsFromHere(const RobotPose& here, bool aligned, double time, Output& out);
   // `pose` with its field pose by the odometry since the start (the start being the rules' one).
   RobotPose byOdometry(const RobotPose& pose) const;
@@ -154,6 +163,8 @@ void describe(V& v, CalibrateCameras::Params& p) {
   v("alignDistance", p.alignDistance, 0.001, 1.0);
   v("alignAngle", p.alignAngle, 0.001, 1.0);
   v("alignSteps", p.alignSteps, 0, 20);
+  v("farDistance", p.farDistance, 0.0, 3.0);
+  v("farPans", p.farPans, 2, 9);
 }
 
 }  // namespace nao::behavior

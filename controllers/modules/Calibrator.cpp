@@ -53,6 +53,10 @@ Calibrator::Calibrator(const ModuleContext& context) : params_(context.load<Para
   solver_.cost = calibration::CostOptions::forField(field);
   solver_.cost.depthSigma = params_.depthSigmaM;
   solver_.cost.angleSigma = params_.angleSigmaDeg * std::numbers::pi / 180;
+  solver_.cost.paintTurns = params_.paintTurns;
+  solver_.cost.paintDepth = params_.paintDepth;
+  solver_.cost.turnPriorSigma = params_.turnPriorDeg * std::numbers::pi / 180;
+  solver_.cost.depthPriorSigma = params_.depthPriorM;
   solver_.minSamplesPerCamera = params_.minSamplesPerCamera;
   solver_.maxRmsAngleDeg = params_.maxRmsAngleDeg;
   solver_.maxRmsDepthM = params_.maxRmsDepthM;
@@ -176,7 +180,8 @@ void Calibrator::update() {
                               {"offsets_deg", {a[0] / kDeg, a[1] / kDeg, a[2] / kDeg, a[3] / kDeg, a[4] / kDeg, a[5] / kDeg}},
                               {"accepted", status.accepted},
                               {"reason", status.reason},
-                              {"rms_angle_deg", status.rmsAngleDeg}};
+                              {"rms_angle_deg", status.rmsAngleDeg},
+                              {"paint", status.solution.solver.paint}};
       });
       break;
     }
@@ -201,7 +206,14 @@ void Calibrator::update() {
       // The new view's residuals at the applied offsets: a calibration that holds leaves the
       // goal box's corners right angles.
       const calibration::CalibrationCost cost({*r.sample}, solver_.cost);
-      const calibration::SampleResiduals res = cost.sampleResiduals(status.applied.toArray(), 0);
+      // With the paint as unknowns, against the paint the solve found.
+      Eigen::VectorXd at = Eigen::VectorXd::Zero(cost.parameterCount());
+      const auto applied = status.applied.toArray();
+      for (int k = 0; k < 6; ++k) at[k] = applied[k];
+      const auto& paint = status.solution.solver.paint;
+      if (static_cast<int>(paint.size()) == cost.paintCount())
+        for (std::size_t k = 0; k < paint.size(); ++k) at[6 + static_cast<int>(k)] = paint[k];
+      const calibration::SampleResiduals res = cost.sampleResidualsWithPaint(at, 0);
       status.verifyAngleDeg = res.projected ? std::max({std::abs(res.angle1Deg), std::abs(res.angle2Deg),
                                                         std::abs(res.parallelDeg)})
                                             : 90.0;

@@ -38,6 +38,13 @@ class Calibrator : public Module<Calibrator,
     // depth (the camera height the legs give, and the paint) and each right angle.
     double depthSigmaM = 0.002;
     double angleSigmaDeg = 0.02;
+    // The paint as unknowns (CostOptions::paintTurns, paintDepth), with priors of the paint's
+    // accuracy. Off: they need views from two distances, which the behaviour does not take yet
+    // (docs/calibration/README.md, "Telling the paint from the cameras").
+    bool paintTurns = false;
+    bool paintDepth = false;
+    double turnPriorDeg = 0.5;
+    double depthPriorM = 0.01;
     std::string solver = "gauss-newton";  // or "ceres" (not in nao-soccer-robot)
     // The image's line segments: "lsd" (OpenCV's LSD), "vision" first, or "lsd+vision" (LSD, then
     // the vision's lines, then both: perception/calibration/SampleExtraction.h). lsd+vision: the
@@ -78,6 +85,10 @@ void describe(V& v, modules::Calibrator::Params& p) {
   v("maxRmsDepthM", p.maxRmsDepthM, 0.0001, 1.0);
   v("depthSigmaM", p.depthSigmaM, 0.0001, 0.1);
   v("angleSigmaDeg", p.angleSigmaDeg, 0.001, 5.0);
+  v("paintTurns", p.paintTurns);
+  v("paintDepth", p.paintDepth);
+  v("turnPriorDeg", p.turnPriorDeg, 0.001, 10.0);
+  v("depthPriorM", p.depthPriorM, 0.0001, 0.1);
   v("solver", p.solver, {"gauss-newton", "ceres"});
   v("lines", p.lines, {"lsd", "vision", "lsd+vision"});
   v("compareSolvers", p.compareSolvers);

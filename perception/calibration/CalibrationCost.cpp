@@ -74,6 +74,17 @@ CalibrationCost::CalibrationCost(std::vector<CalibrationSample> samples, const C
     throw Error("calibration", "goal box depth and residual sigmas must be positive");
   robotToTorso_.reserve(samples_.size());
   for (const auto& s : samples_) robotToTorso_.push_back(robotToTorso(s.joints, s.imuAngle.x(), s.imuAngle.y()));
+  if (options_.paintTurns && !(options_.turnPriorSigma > 0)) throw Error("calibration", "the turns' prior sigma must be positive");
+  if (options_.paintDepth && !(options_.depthPriorSigma > 0)) throw Error("calibration", "the depth's prior sigma must be positive");
+  // Which long line meets the short line further left in the image (the image's midlines).
+  for (const auto& s : samples_) {
+    const ImageLine sc = s.lines[ShortLine].centre(), l1 = s.lines[LongLine1].centre(), l2 = s.lines[LongLine2].centre();
+    auto meet = [&](const ImageLine& l) {
+      const Eigen::ParametrizedLine<double, 2> a(sc.from, (sc.to - sc.from).normalized()), b(l.from, (l.to - l.from).normalized());
+      return intersect(a, b);
+    };
+    longLine1IsLeft_.push_back(meet(l1).x() < meet(l2).x());
+  }
 }
 
 bool CalibrationCost::groundLines(const Params& x, int sample,
@@ -93,32 +104,57 @@ bool CalibrationCost::groundLines(const Params& x, int sample,
   return true;
 }
 
-void CalibrationCost::residuals(const double* x, double* r) const {
+double CalibrationCost::turnOf(const double* x, int sample, int role) const {
+  if (!options_.paintTurns || role == ShortLine) return 0;
+  const bool left = (role == LongLine1) == static_cast<bool>(longLine1IsLeft_[sample]);
+  return left ? x[6] : x[7];
+}
+
+// The sample's right angles and parallelism as sines, and its depth error, with the long lines
+// turned back by the paint's turns in x; false when a line does not reach the ground.
+void CalibrationCost::sampleResiduals(const double* x, int sample, SampleResiduals& out) const {
   const Params p = {x[0], x[1], x[2], x[3], x[4], x[5]};
+  std::array<Eigen::ParametrizedLine<double, 2>, 3> g;
+  if (!groundLines(p, sample, g)) {
+    out.projected = false;
+    return;
+  }
+  // A line painted turned by t (counterclockwise about its junction) is seen turned by t: the
+  // rules' direction is the seen one turned back. The junction stays where it is.
+  auto unturned = [&](int role) {
+    return Eigen::Vector2d(Eigen::Rotation2Dd(-turnOf(x, sample, role)) * g[role].direction());
+  };
+  const Eigen::Vector2d& ds = g[ShortLine].direction();
+  const Eigen::Vector2d d1 = unturned(LongLine1), d2 = unturned(LongLine2);
+  // Sines here; degrees for people in the public overloads.
+  out.angle1Deg = ds.dot(d1);
+  out.angle2Deg = ds.dot(d2);
+  out.depthErrorM = (intersect(g[ShortLine], g[LongLine1]) - intersect(g[ShortLine], g[LongLine2])).norm() -
+                    options_.goalBoxDepth - depthErrorOf(x);
+  // The sign of a direction is arbitrary: sin of the angle between the lines, made independent of it.
+  out.parallelDeg = cross(d1, d2) * (d1.dot(d2) < 0 ? -1 : 1);
+}
+
+void CalibrationCost::residuals(const double* x, double* r) const {
   const int k = residualsPerSample();
   for (int i = 0; i < static_cast<int>(samples_.size()); ++i) {
     double* ri = r + k * i;
-    std::array<Eigen::ParametrizedLine<double, 2>, 3> g;
-    if (!groundLines(p, i, g)) {
+    SampleResiduals s;
+    sampleResiduals(x, i, s);
+    if (!s.projected) {
       for (int j = 0; j < k; ++j) ri[j] = kUnprojectable;
       continue;
     }
     const double w = weights_.empty() ? 1.0 : weights_[i];
-    const Eigen::Vector2d& ds = g[ShortLine].direction();
-    ri[0] = ds.dot(g[LongLine1].direction()) / options_.angleSigma;
-    ri[1] = ds.dot(g[LongLine2].direction()) / options_.angleSigma;
-    const Eigen::Vector2d j1 = intersect(g[ShortLine], g[LongLine1]);
-    const Eigen::Vector2d j2 = intersect(g[ShortLine], g[LongLine2]);
-    ri[2] = ((j1 - j2).norm() - options_.goalBoxDepth) / options_.depthSigma;
-    if (options_.parallelism) {
-      // The sign of a direction is arbitrary: sin of the angle between the lines, made
-      // independent of it.
-      const Eigen::Vector2d& d1 = g[LongLine1].direction();
-      const Eigen::Vector2d& d2 = g[LongLine2].direction();
-      ri[3] = cross(d1, d2) * (d1.dot(d2) < 0 ? -1 : 1) / options_.angleSigma;
-    }
-    for (int j = 0; j < k; ++j) ri[j] *= w;
+    ri[0] = w * s.angle1Deg / options_.angleSigma;
+    ri[1] = w * s.angle2Deg / options_.angleSigma;
+    ri[2] = w * s.depthErrorM / options_.depthSigma;
+    if (options_.parallelism) ri[3] = w * s.parallelDeg / options_.angleSigma;
   }
+  // The paint's priors.
+  double* prior = r + k * samples_.size();
+  if (options_.paintTurns) *prior++ = x[6] / options_.turnPriorSigma, *prior++ = x[7] / options_.turnPriorSigma;
+  if (options_.paintDepth) *prior++ = depthErrorOf(x) / options_.depthPriorSigma;
 }
 
 void CalibrationCost::setSampleWeights(std::vector<double> weights) {
@@ -128,6 +164,13 @@ void CalibrationCost::setSampleWeights(std::vector<double> weights) {
 }
 
 Eigen::VectorXd CalibrationCost::residuals(const Params& x) const {
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(parameterCount());
+  for (int k = 0; k < 6; ++k) full[k] = x[k];
+  return residualsWithPaint(full);
+}
+
+Eigen::VectorXd CalibrationCost::residualsWithPaint(const Eigen::VectorXd& x) const {
+  if (x.size() != parameterCount()) throw Error("calibration", "parameter vector of the wrong size");
   Eigen::VectorXd r(residualCount());
   residuals(x.data(), r.data());
   return r;
@@ -136,20 +179,20 @@ Eigen::VectorXd CalibrationCost::residuals(const Params& x) const {
 double CalibrationCost::cost(const Params& x) const { return 0.5 * residuals(x).squaredNorm(); }
 
 SampleResiduals CalibrationCost::sampleResiduals(const Params& x, int sample) const {
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(parameterCount());
+  for (int k = 0; k < 6; ++k) full[k] = x[k];
+  return sampleResidualsWithPaint(full, sample);
+}
+
+SampleResiduals CalibrationCost::sampleResidualsWithPaint(const Eigen::VectorXd& x, int sample) const {
+  if (x.size() != parameterCount()) throw Error("calibration", "parameter vector of the wrong size");
   SampleResiduals out;
-  std::array<Eigen::ParametrizedLine<double, 2>, 3> g;
-  if (!groundLines(x, sample, g)) {
-    out.projected = false;
-    return out;
-  }
-  const Eigen::Vector2d& ds = g[ShortLine].direction();
-  out.angle1Deg = std::asin(std::clamp(ds.dot(g[LongLine1].direction()), -1.0, 1.0)) * kRadToDeg;
-  out.angle2Deg = std::asin(std::clamp(ds.dot(g[LongLine2].direction()), -1.0, 1.0)) * kRadToDeg;
-  out.depthErrorM = (intersect(g[ShortLine], g[LongLine1]) - intersect(g[ShortLine], g[LongLine2])).norm() -
-                    options_.goalBoxDepth;
-  const Eigen::Vector2d& d1 = g[LongLine1].direction();
-  const Eigen::Vector2d& d2 = g[LongLine2].direction();
-  out.parallelDeg = std::asin(std::clamp(cross(d1, d2) * (d1.dot(d2) < 0 ? -1 : 1), -1.0, 1.0)) * kRadToDeg;
+  sampleResiduals(x.data(), sample, out);
+  if (!out.projected) return out;
+  auto deg = [](double sine) { return std::asin(std::clamp(sine, -1.0, 1.0)) * kRadToDeg; };
+  out.angle1Deg = deg(out.angle1Deg);
+  out.angle2Deg = deg(out.angle2Deg);
+  out.parallelDeg = deg(out.parallelDeg);
   return out;
 }
 

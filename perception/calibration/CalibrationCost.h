@@ -37,6 +37,16 @@ struct CostOptions {
   double angleSigma = 0.02 * std::numbers::pi / 180;  // rad per right-angle residual
   double depthSigma = 0.002;             // m per depth residual
   bool parallelism = true;               // add the long lines' parallelism (weight angleSigma)
+  // The paint as unknowns beside the six offsets (docs/calibration/README.md, "Telling the paint
+  // from the cameras"). Off, a long line painted a little turned about its junction moves the
+  // pitches instead; on, views from two distances tell the two apart. All samples must show
+  // the same box corner: the turns belong to the long lines as the image orders them (the one
+  // meeting the short line further left, the other), which is the same physical line in every
+  // view of one corner. Each unknown has a prior residual (value / sigma): the paint's accuracy.
+  bool paintTurns = false;               // two unknowns: the left and the right long line's turn (rad, ccw)
+  bool paintDepth = false;               // one unknown: the painted box's depth minus goalBoxDepth (m)
+  double turnPriorSigma = 0.5 * std::numbers::pi / 180;  // rad
+  double depthPriorSigma = 0.01;         // m
 
   static CostOptions forField(const FieldDimensions& field);
 };
@@ -53,17 +63,26 @@ class CalibrationCost {
   CalibrationCost(std::vector<CalibrationSample> samples, const CostOptions& options);
 
   int residualsPerSample() const { return options_.parallelism ? 4 : 3; }
-  int residualCount() const { return residualsPerSample() * static_cast<int>(samples_.size()); }
+  // The six offsets, then the paint's unknowns (left turn, right turn, depth; those switched on).
+  int parameterCount() const { return 6 + paintCount(); }
+  int paintCount() const { return (options_.paintTurns ? 2 : 0) + (options_.paintDepth ? 1 : 0); }
+  // Per sample, then one prior per paint unknown.
+  int residualCount() const { return residualsPerSample() * static_cast<int>(samples_.size()) + paintCount(); }
   const std::vector<CalibrationSample>& samples() const { return samples_; }
   const CostOptions& options() const { return options_; }
 
-  // Weighted residuals for parameters x (residualCount() values into r). A line that does
-  // not reach the ground with x gets a large constant residual (kUnprojectable).
+  // Weighted residuals for parameters x (parameterCount() values; residualCount() values into
+  // r). A line that does not reach the ground with x gets a large constant residual
+  // (kUnprojectable).
   void residuals(const double* x, double* r) const;
+  // With the paint's unknowns (if any) at zero: the paint as the rules draw it.
   Eigen::VectorXd residuals(const Params& x) const;
+  Eigen::VectorXd residualsWithPaint(const Eigen::VectorXd& x) const;  // all parameterCount() values
   // 0.5 * sum of squared weighted residuals.
   double cost(const Params& x) const;
+  // Against the paint x's unknowns describe (the rules' paint with a Params).
   SampleResiduals sampleResiduals(const Params& x, int sample) const;
+  SampleResiduals sampleResidualsWithPaint(const Eigen::VectorXd& x, int sample) const;
   // The ground lines (robot frame) of a sample's three line centres with x: a point and a
   // unit direction each; nullopt-like (false) when one does not project.
   bool groundLines(const Params& x, int sample, std::array<Eigen::ParametrizedLine<double, 2>, 3>& out) const;
@@ -74,8 +93,14 @@ class CalibrationCost {
   static constexpr double kUnprojectable = 1e3;
 
  private:
+  // The paint's unknowns in x (0 when not estimated): a long line's turn, the depth's error.
+  double turnOf(const double* x, int sample, int role) const;
+  double depthErrorOf(const double* x) const { return options_.paintDepth ? x[6 + (options_.paintTurns ? 2 : 0)] : 0; }
+  void sampleResiduals(const double* x, int sample, SampleResiduals& out) const;
+
   std::vector<double> weights_;
   std::vector<CalibrationSample> samples_;
+  std::vector<char> longLine1IsLeft_;  // per sample: long line 1 meets the short line left of long line 2
   std::vector<Eigen::Isometry3d> robotToTorso_;  // per sample: independent of the offsets
   CostOptions options_;
 };

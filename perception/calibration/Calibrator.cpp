@@ -56,7 +56,7 @@ CalibrationSolution solveCalibration(const std::vector<CalibrationSample>& sampl
     sol.solver = solveWith(options.solver, cost, options);
     sol.solveSeconds += sol.solver.seconds;
     // Per sample: the norm of its weighted residuals. All small: done.
-    const Eigen::VectorXd r = cost.residuals(sol.solver.x);
+    const Eigen::VectorXd r = cost.residualsWithPaint(sol.solver.full());
     double worstIn = 0;
     for (std::size_t i = 0; i < sol.used.size(); ++i) worstIn = std::max(worstIn, r.segment(k * i, k).norm());
     if (worstIn <= floor) break;
@@ -76,7 +76,7 @@ CalibrationSolution solveCalibration(const std::vector<CalibrationSample>& sampl
       const SolverResult s = solveWith(options.solver, robust, options);
       sol.solveSeconds += s.seconds;
       robust.setSampleWeights({});
-      const Eigen::VectorXd rr = robust.residuals(s.x);
+      const Eigen::VectorXd rr = robust.residualsWithPaint(s.full());
       for (std::size_t i = 0; i < sol.used.size(); ++i) norms[i] = rr.segment(k * i, k).norm();
     }
     std::vector<double> sorted = norms;
@@ -98,7 +98,7 @@ CalibrationSolution solveCalibration(const std::vector<CalibrationSample>& sampl
   const CalibrationCost cost(subset(samples, sol.used), options.cost);
   double a2 = 0, d2 = 0;
   for (int i = 0; i < static_cast<int>(sol.used.size()); ++i) {
-    const SampleResiduals s = cost.sampleResiduals(sol.solver.x, i);
+    const SampleResiduals s = cost.sampleResidualsWithPaint(sol.solver.full(), i);
     sol.residuals.push_back(s);
     a2 += s.angle1Deg * s.angle1Deg + s.angle2Deg * s.angle2Deg;
     d2 += s.depthErrorM * s.depthErrorM;

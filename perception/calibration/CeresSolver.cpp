@@ -1,6 +1,7 @@
 #include "perception/calibration/CeresSolver.h"
 
 #include <chrono>
+#include <vector>
 
 #include <ceres/ceres.h>
 
@@ -22,9 +23,11 @@ bool ceresAvailable() { return true; }
 SolverResult solveCeres(const CalibrationCost& cost, const Params& start, const CeresOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   SolverResult result;
-  Params x = start;
+  const int n = cost.parameterCount();
+  std::vector<double> x(n, 0.0);
+  for (int k = 0; k < 6; ++k) x[k] = start[k];
   auto* fn = new ceres::DynamicNumericDiffCostFunction<Residuals, ceres::CENTRAL>(new Residuals{&cost});
-  fn->AddParameterBlock(6);
+  fn->AddParameterBlock(n);
   fn->SetNumResiduals(cost.residualCount());
   ceres::Problem problem;  // owns fn
   problem.AddResidualBlock(fn, nullptr, x.data());
@@ -41,7 +44,8 @@ SolverResult solveCeres(const CalibrationCost& cost, const Params& start, const 
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);
 
-  result.x = x;
+  for (int k = 0; k < 6; ++k) result.x[k] = x[k];
+  result.paint.assign(x.begin() + 6, x.end());
   result.iterations = static_cast<int>(summary.iterations.size());
   result.initialCost = summary.initial_cost;
   result.finalCost = summary.final_cost;

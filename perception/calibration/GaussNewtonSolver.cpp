@@ -15,12 +15,12 @@ SolverKind parseSolver(const std::string& name) {
   throw Error("--solver", "must be gauss-newton or ceres, not '" + name + "'");
 }
 
-Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Params& x, double step) {
-  const int m = cost.residualCount();
-  Eigen::MatrixXd jac(m, 6);
+Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Eigen::VectorXd& x, double step) {
+  const int m = cost.residualCount(), n = cost.parameterCount();
+  Eigen::MatrixXd jac(m, n);
   Eigen::VectorXd plus(m), minus(m);
-  for (int k = 0; k < 6; ++k) {
-    Params xp = x, xm = x;
+  for (int k = 0; k < n; ++k) {
+    Eigen::VectorXd xp = x, xm = x;
     xp[k] += step;
     xm[k] -= step;
     cost.residuals(xp.data(), plus.data());
@@ -30,11 +30,19 @@ Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Params& x, 
   return jac;
 }
 
+Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Params& x, double step) {
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(cost.parameterCount());
+  for (int k = 0; k < 6; ++k) full[k] = x[k];
+  return numericalJacobian(cost, full, step);
+}
+
 SolverResult solveGaussNewton(const CalibrationCost& cost, const Params& start, const GaussNewtonOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   SolverResult result;
-  Params x = start;
-  Eigen::VectorXd r = cost.residuals(x);
+  const int n = cost.parameterCount();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < 6; ++k) x[k] = start[k];
+  Eigen::VectorXd r = cost.residualsWithPaint(x);
   double f = 0.5 * r.squaredNorm();
   result.initialCost = f;
   int stable = 0;
@@ -42,26 +50,25 @@ SolverResult solveGaussNewton(const CalibrationCost& cost, const Params& start, 
   for (int it = 0; it < options.maxIterations; ++it) {
     result.iterations = it + 1;
     const Eigen::MatrixXd jac = numericalJacobian(cost, x, options.jacobianStep);
-    const Eigen::Matrix<double, 6, 6> jtj = jac.transpose() * jac;
-    const Eigen::Matrix<double, 6, 1> jtr = jac.transpose() * r;
-    Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(jtj);
+    const Eigen::MatrixXd jtj = jac.transpose() * jac;
+    const Eigen::VectorXd jtr = jac.transpose() * r;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt(jtj);
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
       result.message = "singular normal equations: the samples do not determine all six offsets";
       break;
     }
-    Eigen::Matrix<double, 6, 1> dx = -ldlt.solve(jtr);
+    Eigen::VectorXd dx = -ldlt.solve(jtr);
     if (!dx.allFinite()) {
       result.message = "non-finite step";
       break;
     }
     // Halve the step while it raises the cost (only far from the solution).
-    Params xn{};
-    Eigen::VectorXd rn;
+    Eigen::VectorXd xn, rn;
     double fn = 0;
     int halvings = 0;
     for (;; ++halvings) {
-      for (int k = 0; k < 6; ++k) xn[k] = x[k] + dx[k];
-      rn = cost.residuals(xn);
+      xn = x + dx;
+      rn = cost.residualsWithPaint(xn);
       fn = 0.5 * rn.squaredNorm();
       if (fn <= f || halvings >= options.maxHalvings || dx.cwiseAbs().maxCoeff() < options.stepThreshold) break;
       dx /= 2;
@@ -82,10 +89,10 @@ SolverResult solveGaussNewton(const CalibrationCost& cost, const Params& start, 
       break;
     }
   }
-  result.x = x;
+  for (int k = 0; k < 6; ++k) result.x[k] = x[k];
+  result.paint.assign(x.data() + 6, x.data() + n);
   result.finalCost = f;
-  for (double v : x)
-    if (!std::isfinite(v)) result.converged = false;
+  if (!x.allFinite()) result.converged = false;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

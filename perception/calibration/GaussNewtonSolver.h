@@ -20,7 +20,9 @@ struct GaussNewtonOptions {
 SolverResult solveGaussNewton(const CalibrationCost& cost, const Params& start = {},
                               const GaussNewtonOptions& options = {});
 
-// The numerical Jacobian (central differences) of the weighted residuals at x.
+// The numerical Jacobian (central differences) of the weighted residuals at x (all of the
+// cost's parameterCount() parameters; with a Params the paint's unknowns are zero).
+Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Eigen::VectorXd& x, double step = 1e-6);
 Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Params& x, double step = 1e-6);
 
 }  // namespace nao::calibration
