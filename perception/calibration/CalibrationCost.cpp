@@ -110,8 +110,9 @@ double CalibrationCost::turnOf(const double* x, int sample, int role) const {
   return left ? x[6] : x[7];
 }
 
-// The sample's right angles and parallelism as sines, and its depth error, with the long lines
-// turned back by the paint's turns in x; false when a line does not reach the ground.
+// The sample's right angles and parallelism as sines (in the *Deg fields: the public overloads
+// turn them into degrees) and its depth error, with the long lines turned back by the paint's
+// turns in x; out.projected false when a line does not reach the ground.
 void CalibrationCost::sampleResiduals(const double* x, int sample, SampleResiduals& out) const {
   const Params p = {x[0], x[1], x[2], x[3], x[4], x[5]};
   std::array<Eigen::ParametrizedLine<double, 2>, 3> g;
