@@ -207,13 +207,8 @@ void Calibrator::update() {
       // goal box's corners right angles.
       const calibration::CalibrationCost cost({*r.sample}, solver_.cost);
       // With the paint as unknowns, against the paint the solve found.
-      Eigen::VectorXd at = Eigen::VectorXd::Zero(cost.parameterCount());
-      const auto applied = status.applied.toArray();
-      for (int k = 0; k < 6; ++k) at[k] = applied[k];
-      const auto& paint = status.solution.solver.paint;
-      if (static_cast<int>(paint.size()) == cost.paintCount())
-        for (std::size_t k = 0; k < paint.size(); ++k) at[6 + static_cast<int>(k)] = paint[k];
-      const calibration::SampleResiduals res = cost.sampleResidualsWithPaint(at, 0);
+      const calibration::SampleResiduals res =
+          cost.sampleResidualsWithPaint(cost.parameters(status.applied.toArray(), status.solution.solver.paint), 0);
       status.verifyAngleDeg = res.projected ? std::max({std::abs(res.angle1Deg), std::abs(res.angle2Deg),
                                                         std::abs(res.parallelDeg)})
                                             : 90.0;

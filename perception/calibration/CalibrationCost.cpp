@@ -164,11 +164,15 @@ void CalibrationCost::setSampleWeights(std::vector<double> weights) {
   weights_ = std::move(weights);
 }
 
-Eigen::VectorXd CalibrationCost::residuals(const Params& x) const {
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(parameterCount());
-  for (int k = 0; k < 6; ++k) full[k] = x[k];
-  return residualsWithPaint(full);
+Eigen::VectorXd CalibrationCost::parameters(const Params& offsets, const std::vector<double>& paint) const {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(parameterCount());
+  for (int k = 0; k < 6; ++k) x[k] = offsets[k];
+  if (static_cast<int>(paint.size()) == paintCount())
+    for (std::size_t k = 0; k < paint.size(); ++k) x[6 + static_cast<int>(k)] = paint[k];
+  return x;
 }
+
+Eigen::VectorXd CalibrationCost::residuals(const Params& x) const { return residualsWithPaint(parameters(x)); }
 
 Eigen::VectorXd CalibrationCost::residualsWithPaint(const Eigen::VectorXd& x) const {
   if (x.size() != parameterCount()) throw Error("calibration", "parameter vector of the wrong size");
@@ -180,9 +184,7 @@ Eigen::VectorXd CalibrationCost::residualsWithPaint(const Eigen::VectorXd& x) co
 double CalibrationCost::cost(const Params& x) const { return 0.5 * residuals(x).squaredNorm(); }
 
 SampleResiduals CalibrationCost::sampleResiduals(const Params& x, int sample) const {
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(parameterCount());
-  for (int k = 0; k < 6; ++k) full[k] = x[k];
-  return sampleResidualsWithPaint(full, sample);
+  return sampleResidualsWithPaint(parameters(x), sample);
 }
 
 SampleResiduals CalibrationCost::sampleResidualsWithPaint(const Eigen::VectorXd& x, int sample) const {

@@ -75,6 +75,9 @@ class CalibrationCost {
   // r). A line that does not reach the ground with x gets a large constant residual
   // (kUnprojectable).
   void residuals(const double* x, double* r) const;
+  // All parameterCount() parameters: the offsets, then the paint (zeros, the rules' paint,
+  // unless `paint` holds paintCount() values).
+  Eigen::VectorXd parameters(const Params& offsets, const std::vector<double>& paint = {}) const;
   // With the paint's unknowns (if any) at zero: the paint as the rules draw it.
   Eigen::VectorXd residuals(const Params& x) const;
   Eigen::VectorXd residualsWithPaint(const Eigen::VectorXd& x) const;  // all parameterCount() values

@@ -31,17 +31,14 @@ Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Eigen::Vect
 }
 
 Eigen::MatrixXd numericalJacobian(const CalibrationCost& cost, const Params& x, double step) {
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(cost.parameterCount());
-  for (int k = 0; k < 6; ++k) full[k] = x[k];
-  return numericalJacobian(cost, full, step);
+  return numericalJacobian(cost, cost.parameters(x), step);
 }
 
 SolverResult solveGaussNewton(const CalibrationCost& cost, const Params& start, const GaussNewtonOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   SolverResult result;
   const int n = cost.parameterCount();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  for (int k = 0; k < 6; ++k) x[k] = start[k];
+  Eigen::VectorXd x = cost.parameters(start);
   Eigen::VectorXd r = cost.residualsWithPaint(x);
   double f = 0.5 * r.squaredNorm();
   result.initialCost = f;
