@@ -91,6 +91,43 @@ void finish(const std::string& temp, const std::string& path) {
   }
 }
 
+// Temporary files being written and not yet staged: a signal arriving during a write (the
+// fsync may take long on a busy disk) removes them too. Fixed slots, claimed with atomics, so
+// the signal handler reads them without a lock or an allocation; more writers at once than
+// slots go unregistered (and may leave their file when interrupted, as before).
+struct InFlightSlot {
+  std::atomic<bool> claimed{false};
+  std::atomic<bool> ready{false};
+  char path[PATH_MAX] = {};
+};
+InFlightSlot inFlight[32];
+
+// Registers `temp` for the length of one write.
+class InFlight {
+ public:
+  explicit InFlight(const std::string& temp) {
+    if (temp.size() >= PATH_MAX) return;
+    for (auto& s : inFlight) {
+      bool expected = false;
+      if (!s.claimed.compare_exchange_strong(expected, true)) continue;
+      std::memcpy(s.path, temp.c_str(), temp.size() + 1);
+      s.ready.store(true);
+      slot_ = &s;
+      return;
+    }
+  }
+  ~InFlight() {
+    if (!slot_) return;
+    slot_->ready.store(false);
+    slot_->claimed.store(false);
+  }
+  InFlight(const InFlight&) = delete;
+  InFlight& operator=(const InFlight&) = delete;
+
+ private:
+  InFlightSlot* slot_ = nullptr;
+};
+
 }  // namespace
 
 void writeFile(const std::string& path, std::string_view bytes) {
@@ -110,6 +147,7 @@ void writeFile(const std::string& path, std::string_view bytes) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw RunFailure(path, "is a folder, not a file");
   const std::string temp = tempPathFor(path);
+  const InFlight registered(temp);  // before the file exists: no moment it is unknown
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) throw RunFailure(path, "cannot create in " + folderOf(path) + ": " + errnoText());
   try {
@@ -132,6 +170,7 @@ void writeFile(const std::string& path, std::string_view bytes) {
 void writeFileWith(const std::string& path, const std::function<void(const std::string& tempPath)>& write) {
   if (path.empty()) throw RunFailure("output", "empty file name");
   const std::string temp = tempPathFor(path);
+  const InFlight registered(temp);
   try {
     write(temp);
   } catch (...) {
@@ -154,10 +193,15 @@ void makeDirectories(const std::string& dir) {
     std::error_code ec;
     if (fs::is_directory(sofar, ec)) continue;
     if (fs::exists(sofar, ec)) throw RunFailure(sofar.string(), "exists and is not a folder");
-    if (::mkdir(sofar.c_str(), 0777) != 0 && errno != EEXIST)
-      throw RunFailure(sofar.string(), "cannot create the folder: " + errnoText());
+    // Listed before it is made, so an interrupt right after the mkdir removes it too.
     std::lock_guard<std::mutex> lock(TransactionAccess::mutex());
-    if (OutputTransaction* t = TransactionAccess::open()) TransactionAccess::made(*t).push_back(sofar.string());
+    OutputTransaction* t = TransactionAccess::open();
+    if (t) TransactionAccess::made(*t).push_back(sofar.string());
+    if (::mkdir(sofar.c_str(), 0777) != 0) {
+      const int err = errno;
+      if (t) TransactionAccess::made(*t).pop_back();  // not ours (made meanwhile) or not made
+      if (err != EEXIST) throw RunFailure(sofar.string(), "cannot create the folder: " + std::string(std::strerror(err)));
+    }
   }
 }
 
@@ -200,6 +244,8 @@ namespace {
 // Only async-signal-safe calls: unlink, rmdir, signal, raise. The interrupted thread may have
 // been changing the lists; at worst a file is left, never a wrong one removed.
 void discardAndDie(int sig) {
+  for (const auto& s : inFlight)
+    if (s.ready.load()) ::unlink(s.path);
   if (OutputTransaction* t = TransactionAccess::open()) {
     for (const auto& s : TransactionAccess::staged(*t)) ::unlink(s.temp.c_str());
     const auto& made = TransactionAccess::made(*t);

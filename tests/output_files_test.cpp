@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -68,6 +72,32 @@ TEST(OutputFiles, DiscardedTransactionLeavesNothing) {
   EXPECT_FALSE(fs::exists(dir + "/model.yml"));
   EXPECT_EQ(slurp(dir + "/kept.txt"), "from before");
   EXPECT_EQ(entries(dir), 1u);
+}
+
+// Ctrl-C while a file is half written (in a child process, which dies of it): the temporary
+// file goes with the folders the run made. Before the in-flight files were known to the
+// handler, the temporary kept the folder from being removed (seen once in CI's Cli test).
+TEST(OutputFiles, InterruptedMidWriteLeavesNothing) {
+  const std::string dir = freshDir("interrupted");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    OutputTransaction t;
+    t.discardOnSignals();
+    nao::io::makeDirectories(dir + "/run/images");
+    nao::io::writeFile(dir + "/run/images/done.png", "staged");
+    nao::io::writeFileWith(dir + "/run/images/half.png", [](const std::string& temp) {
+      std::ofstream(temp) << "half a picture";
+      std::raise(SIGINT);
+    });
+    ::_exit(0);  // not reached: the signal ends the child
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the child was not ended by the signal";
+  EXPECT_EQ(WTERMSIG(status), SIGINT);
+  EXPECT_FALSE(fs::exists(dir + "/run")) << "left: " << (fs::exists(dir + "/run/images") ? "images" : "run");
+  EXPECT_EQ(entries(dir), 0u);
 }
 
 TEST(OutputFiles, WriterThatWritesNothingFails) {
