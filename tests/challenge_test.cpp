@@ -285,6 +285,92 @@ TEST(CalibrateCameras, TheFarViewsAreTakenFromTheFarDistance) {
   EXPECT_NEAR(awayNear.dot(awayFar), 1, 1e-9);
 }
 
+// A solution that fails its check view (an angle residual beyond verifyMaxDeg) is not
+// reported: every view is taken once more at pans moved by retakePanDeg and all samples are
+// solved again; one that holds is reported at once, and after maxRounds the robot reports what
+// it has. The calibrator is played by hand: it accepts every view and solve and answers the
+// check with the angles given.
+TEST(CalibrateCameras, AFailedCheckTakesTheViewsAgain) {
+  const BallModel ball;
+  const GameState game;
+  const FallState fall;
+  MotionInfo motion;
+  motion.walkToReached = true;
+  const BehaviorCommand command;
+  struct Run {
+    int views = 0, solves = 0, checks = 0, verifyFailures = 0;
+    bool reported = false;
+    std::vector<double> pans;  // each collected view's head yaw (rad), in order
+  };
+  auto run = [&](std::vector<double> checkAngles, int maxRounds) {
+    behavior::CalibrateCameras::Params params;
+    params.maxRounds = maxRounds;
+    behavior::CalibrateCameras c(standardField(), StandController::standPosture(), params);
+    c.restart(0);
+    RobotPose pose;
+    pose.valid = true;
+    pose.pose = Pose2(-3.2, -3.0, M_PI / 2);
+    CameraPercepts p;
+    p.processed = true;
+    CalibrationStatus status;
+    CameraCalibration current;
+    Run r;
+    for (double t = 0; t <= 400 && !r.reported; t += 1.0 / 30) {
+      p.timestamp = t;
+      const behavior::BehaviorInput in{t, pose, ball, game, fall, motion, command};
+      const auto out = c.run(in, status, current, p);
+      const CalibrationRequest& q = out.calibration;
+      using A = CalibrationRequest::Action;
+      if (q.action == A::Collect && q.viewId != status.last.viewId) {
+        status.last.viewId = q.viewId;
+        status.last.accepted = true;
+        r.pans.push_back(out.head.yaw);
+      } else if (q.action == A::Solve && q.solutionId != status.solutionId) {
+        status.solutionId = q.solutionId;
+        status.accepted = status.converged = true;
+        status.offsets.bodyPitch = 0.01 * q.solutionId;  // a new solution each time
+        ++r.solves;
+      } else if (q.action == A::Apply && status.applied.toArray() != status.offsets.toArray()) {
+        status.applied = current = status.offsets;
+        ++status.appliedId;
+        status.verifyAngleDeg = -1;
+      } else if (q.action == A::Verify && status.verifyAngleDeg < 0) {
+        status.verifyAngleDeg = checkAngles.at(static_cast<std::size_t>(r.checks++));
+      }
+      if (!out.report.empty()) {
+        EXPECT_EQ(out.report, "Calibration finished");
+        r.reported = true;
+      }
+    }
+    r.views = c.summary().views;
+    r.verifyFailures = c.summary().verifyFailures;
+    return r;
+  };
+  // Held at once: ten views, one solve, one check.
+  const Run held = run({0.02}, 3);
+  EXPECT_TRUE(held.reported);
+  EXPECT_EQ(held.solves, 1);
+  EXPECT_EQ(held.checks, 1);
+  EXPECT_EQ(held.views, 10);
+  EXPECT_EQ(held.verifyFailures, 0);
+  // Failed once (0.3 deg > 0.1): the ten views again, at other pans, a second solve and check.
+  const Run again = run({0.3, 0.02}, 3);
+  EXPECT_TRUE(again.reported);
+  EXPECT_EQ(again.solves, 2);
+  EXPECT_EQ(again.checks, 2);
+  EXPECT_EQ(again.views, 20);
+  EXPECT_EQ(again.verifyFailures, 1);
+  ASSERT_EQ(again.pans.size(), 20u);
+  for (int k = 0; k < 10; ++k)
+    EXPECT_NEAR(std::abs(again.pans[k + 10] - again.pans[k]), 7 * M_PI / 180, 1e-6) << "view " << k + 1;
+  // Failing every check: reported after maxRounds solves all the same.
+  const Run failing = run({0.3, 0.3, 0.3}, 2);
+  EXPECT_TRUE(failing.reported);
+  EXPECT_EQ(failing.solves, 2);
+  EXPECT_EQ(failing.checks, 2);
+  EXPECT_EQ(failing.verifyFailures, 1);
+}
+
 TEST(ChallengeTasks, TheBallSentenceInMillimetres) {
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(1.2345, -0.0004)), "The ball is at: 1235 0");
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(-0.12, 2.7)), "The ball is at: -120 2700");

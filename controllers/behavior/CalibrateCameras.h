@@ -14,7 +14,8 @@
 // aligned position: one body heading per pan, turned in place on odometry), has the
 // Calibrator solve, applies an accepted solution, checks it on one more view and reports
 // "Calibration finished" with an arm up. A solution that is not accepted gets another round of
-// the rejected views at pans shifted by retakePanDeg; after maxRounds the robot reports anyway
+// the rejected views at pans shifted by retakePanDeg, one that fails the check (an angle
+// residual beyond verifyMaxDeg) a round of all views; after maxRounds the robot reports anyway
 // with the offsets it has (finishing beats being stopped at 10 min).
 #include <array>
 #include <string>
@@ -46,7 +47,7 @@ class CalibrateCameras {
     double solveTimeout = 5.0;     // s for the calibrator to answer a solve, apply or verify
     double retakePanDeg = 7;       // the rejected views' pans move by this per round
     int maxRounds = 3;             // solve attempts before reporting what there is
-    double verifyMaxDeg = 0.1;     // the check view's largest angle residual at the applied offsets
+    double verifyMaxDeg = 0.1;     // the check view's largest angle residual at the applied offsets; beyond: another round
     double headMaxSpeed = 1.5;     // rad/s to each view's head angles
     double alignLook = 0.8;        // s with the head on the box before the short line counts
     double alignGather = 0.6;      // s of images averaged per alignment step
@@ -78,7 +79,8 @@ class CalibrateCameras {
     std::string sideFrom;  // "goal box" or "localization"
     bool aligned = false;  // the short line was seen square ahead before the views
     bool applied = false;
-    double verifyAngleDeg = -1;
+    double verifyAngleDeg = -1;  // the last check's
+    int verifyFailures = 0;      // checks beyond verifyMaxDeg that started another round
   };
 
   CalibrateCameras(const FieldDimensions& field, const JointArray& standPosture, const Params& params);
