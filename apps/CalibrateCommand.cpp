@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <random>
 
 #include <unistd.h>
@@ -105,14 +106,16 @@ nlohmann::json runJson(const sim::CalibrationRunResult& r) {
 modules::Calibrator::Params calibratorParams(const CalibrateOptions& options) {
   modules::Calibrator::Params calibrator =
       loadParams<modules::Calibrator::Params>("Calibrator", RobotProgramConfig::defaultConfigDir());
-  calibrator.solver = options.solver;
+  // The robot program's own settings unless a flag says otherwise: a scorer that silently ran
+  // another line source than the robot would measure another calibrator.
+  if (!options.solver.empty()) calibrator.solver = options.solver;
   calibrator.compareSolvers = options.compare;
-  calibrator.lines = options.lines;
+  if (!options.lines.empty()) calibrator.lines = options.lines;
   return calibrator;
 }
 
 // --save: the solution stored for the head, unless the store refuses it.
-void save(const CalibrateOptions& options, const std::string& headId, const cal::CalibrationSolution& solution,
+void save(const CalibrateOptions& options, const std::string& solver, const std::string& headId, const cal::CalibrationSolution& solution,
           const CameraCalibration& offsets, nlohmann::json& j) {
   const cal::CalibrationStore store(options.store);
   cal::CalibrationRecord rec;
@@ -120,7 +123,7 @@ void save(const CalibrateOptions& options, const std::string& headId, const cal:
   rec.rmsAngleDeg = solution.rmsAngleDeg;
   rec.rmsDepthM = solution.rmsDepthM;
   rec.samples = static_cast<int>(solution.used.size());
-  rec.solver = options.solver;
+  rec.solver = solver;
   rec.converged = solution.solver.converged && solution.accepted;
   const cal::SaveOutcome saved = store.save(headId, rec);
   j["saved"] = saved.saved;
@@ -144,14 +147,28 @@ int calibrateFromLog(const CalibrateOptions& options) {
   context.params[modules::kFieldParams] = calibrationFieldFrom(options.common);
   DebugSink debug(options.debug);
   context.debug = debug.channels();
+  const modules::Calibrator::Params calibrator = calibratorParams(options);
+  const std::string& solver = calibrator.solver;
   const CalibrationReplay replay = replayCalibrationLog(log, context);
   const CalibrationStatus& s = replay.status;
   nlohmann::json views = nlohmann::json::array();
   int agree = 0;
+  // The k-th accepted view gave sample k; the solve's residuals are per sample it used.
+  std::map<int, const cal::SampleResiduals*> residualsOf;
+  for (std::size_t u = 0; u < s.solution.used.size() && u < s.solution.residuals.size(); ++u)
+    residualsOf[s.solution.used[u]] = &s.solution.residuals[u];
+  int sample = 0;
   for (const ReplayedView& v : replay.views) {
     agree += v.accepted == v.liveAccepted;
-    views.push_back({{"view", v.viewId}, {"camera", cameraName(v.camera)}, {"accepted", v.accepted}, {"reason", v.reason},
-                     {"live_accepted", v.liveAccepted}, {"live_reason", v.liveReason}});
+    nlohmann::json view = {{"view", v.viewId}, {"camera", cameraName(v.camera)}, {"accepted", v.accepted}, {"reason", v.reason},
+                           {"live_accepted", v.liveAccepted}, {"live_reason", v.liveReason}};
+    if (v.accepted) {
+      if (const auto it = residualsOf.find(sample); it != residualsOf.end())
+        view["residuals"] = {{"angle1_deg", it->second->angle1Deg}, {"angle2_deg", it->second->angle2Deg},
+                             {"parallel_deg", it->second->parallelDeg}, {"depth_m", it->second->depthErrorM}};
+      ++sample;
+    }
+    views.push_back(view);
   }
   const auto offsets = s.offsets.toArray();
   std::fprintf(stderr, "calibrate: from %s (head %s, %s): %zu views, %d top and %d bottom samples (%d of %zu verdicts as live); "
@@ -173,9 +190,10 @@ int calibrateFromLog(const CalibrateOptions& options) {
                       {"accepted", s.accepted},
                       {"refusal", s.reason},
                       {"residual_rms", {{"angle_deg", s.rmsAngleDeg}, {"depth_m", s.rmsDepthM}}},
-                      {"solver", options.solver},
+                      {"solver", solver},
+                      {"lines", calibrator.lines},
                       {"views", views}};
-  if (options.save) save(options, log.headId, s.solution, s.offsets, j);
+  if (options.save) save(options, solver, log.headId, s.solution, s.offsets, j);
   if (!options.common.json.empty()) writeJson(options.common.json, j);
   return s.accepted ? 0 : 1;
 }
@@ -219,11 +237,12 @@ int calibrateCommand(const CalibrateOptions& options) {
 
   nlohmann::json j = runJson(r);
   j["solver"] = calibrator.solver;
+  j["lines"] = calibrator.lines;
   j["lighting"] = lightingJson(o.lighting);
   j["venue"] = sim::toJson(o.venue);
   j["seed"] = o.seed;
   j["files"] = r.imagesWritten;
-  if (options.save) save(options, r.headId, r.solution, r.estimate, j);
+  if (options.save) save(options, calibrator.solver, r.headId, r.solution, r.estimate, j);
   if (!options.common.json.empty()) writeJson(options.common.json, j);
   return r.finished && r.applied && r.solution.accepted ? 0 : 1;
 }

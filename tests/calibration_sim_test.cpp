@@ -193,6 +193,12 @@ TEST(CalibrateCommand, EstimatesPicturesStoreAndSameSeedSameResult) {
   EXPECT_EQ(fromLog["head_id"], head);
   EXPECT_EQ(fromLog["records"].get<int>(), static_cast<int>(a["views"].size()));
   EXPECT_EQ(fromLog["verdicts_as_live"], fromLog["records"]);
+  // Both ran the robot program's line source (once `calibrate` ran LSD alone by default, and
+  // its from-log replay of a challenge's log judged 6 of 16 views otherwise than the robot).
+  const std::string configLines =
+      readJson(dataPath("config/parameters/Calibrator.json")).at("lines").get<std::string>();
+  EXPECT_EQ(a["lines"], configLines);
+  EXPECT_EQ(fromLog["lines"], configLines);
   EXPECT_TRUE(fromLog["accepted"].get<bool>());
   for (const char* name : CameraCalibration::kNames)
     EXPECT_NEAR(fromLog["estimated_deg"][name].get<double>(), a["estimated_deg"][name].get<double>(), 1e-9) << name;

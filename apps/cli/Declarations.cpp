@@ -670,9 +670,10 @@ void CommandLine::declare() {
     c.gl();
     seedJsonField(c);
     simOptions(c, k.sim);
-    c.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "least-squares solver");
+    c.choice("--solver", k.solver, {"gauss-newton", "ceres"}, "least-squares solver (default: the robot program's, config/parameters/Calibrator.json)");
     c.flag("--compare", k.compare, "also solve the same samples with the other solver");
-    c.choice("--lines", k.lines, {"lsd", "vision"}, "image line segments from OpenCV's LSD or the vision pipeline first");
+    c.choice("--lines", k.lines, {"lsd", "vision", "lsd+vision"},
+             "image line segments from OpenCV's LSD, the vision pipeline, or LSD then the vision (default: the robot program's, config/parameters/Calibrator.json)");
     c.choice("--start", k.start, {"left", "right"}, "the side line the robot starts on");
     c.number("--time-limit", k.timeLimit, 1, 600, "s", "the calibration phase's time (the rules' 10 min; shorter for a quick look)");
     c.outputFolder("--images", k.images, "write every view annotated and the before/after pictures (paper Fig. 2)");

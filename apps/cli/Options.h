@@ -186,7 +186,8 @@ struct CalibrateOptions {
   CommonOptions common;
   SimOptions sim;
   DebugOptions debug;
-  std::string solver = "gauss-newton", lines = "lsd", start = "right", images, store;
+  std::string solver, lines;  // empty: config/parameters/Calibrator.json's, as the robot program
+  std::string start = "right", images, store;
   std::string record, fromLog, headId;
   bool compare = false, save = false;
   double timeLimit = 600;
