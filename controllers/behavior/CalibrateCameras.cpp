@@ -344,15 +344,6 @@ CalibrateCameras::Output CalibrateCameras::run(const BehaviorInput& in, const Ca
       }
       if (status.verifyAngleDeg >= 0 || machine_.timeIn(t) >= params_.collectTimeout + 3.0) {
         summary_.verifyAngleDeg = status.verifyAngleDeg;
-        if (status.verifyAngleDeg > params_.verifyMaxDeg && round_ < params_.maxRounds) {
-          // The solution does not hold on a new view: every view once more at moved pans, all
-          // samples solved together (the calibrator keeps the earlier ones).
-          ++summary_.verifyFailures;
-          views_.pop_back();  // the check view
-          for (PlannedView& v : views_) v.taken = false;
-          startRound(t, out);
-          break;
-        }
         out.report = "Calibration finished";
         machine_.go(State::Report, t);
       }

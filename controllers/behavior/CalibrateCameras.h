@@ -14,8 +14,7 @@
 // aligned position: one body heading per pan, turned in place on odometry), has the
 // Calibrator solve, applies an accepted solution, checks it on one more view and reports
 // "Calibration finished" with an arm up. A solution that is not accepted gets another round of
-// the rejected views at pans shifted by retakePanDeg, one that fails the check (an angle
-// residual beyond verifyMaxDeg) a round of all views; after maxRounds the robot reports anyway
+// the rejected views at pans shifted by retakePanDeg; after maxRounds the robot reports anyway
 // with the offsets it has (finishing beats being stopped at 10 min).
 #include <array>
 #include <string>
@@ -47,7 +46,6 @@ class CalibrateCameras {
     double solveTimeout = 5.0;     // s for the calibrator to answer a solve, apply or verify
     double retakePanDeg = 7;       // the rejected views' pans move by this per round
     int maxRounds = 3;             // solve attempts before reporting what there is
-    double verifyMaxDeg = 0.1;     // the check view's largest angle residual at the applied offsets; beyond: another round
     double headMaxSpeed = 1.5;     // rad/s to each view's head angles
     double alignLook = 0.8;        // s with the head on the box before the short line counts
     double alignGather = 0.6;      // s of images averaged per alignment step
@@ -79,8 +77,7 @@ class CalibrateCameras {
     std::string sideFrom;  // "goal box" or "localization"
     bool aligned = false;  // the short line was seen square ahead before the views
     bool applied = false;
-    double verifyAngleDeg = -1;  // the last check's
-    int verifyFailures = 0;      // checks beyond verifyMaxDeg that started another round
+    double verifyAngleDeg = -1;
   };
 
   CalibrateCameras(const FieldDimensions& field, const JointArray& standPosture, const Params& params);
@@ -158,7 +155,6 @@ void describe(V& v, CalibrateCameras::Params& p) {
   v("solveTimeout", p.solveTimeout, 0.1, 60.0);
   v("retakePanDeg", p.retakePanDeg, 0.0, 30.0);
   v("maxRounds", p.maxRounds, 1, 10);
-  v("verifyMaxDeg", p.verifyMaxDeg, 0.001, 10.0);
   v("headMaxSpeed", p.headMaxSpeed, 0.1, 10.0);
   v("alignLook", p.alignLook, 0.0, 5.0);
   v("alignGather", p.alignGather, 0.0, 5.0);
