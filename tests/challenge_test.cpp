@@ -285,6 +285,62 @@ TEST(CalibrateCameras, TheFarViewsAreTakenFromTheFarDistance) {
   EXPECT_NEAR(awayNear.dot(awayFar), 1, 1e-9);
 }
 
+// Lost, the robot stands for lostTurnAfter, then turns in place (the head sweeping, by
+// LookActive) until the pose is valid again; then it walks to its target as before. A robot of
+// challenge seed 8 stood lost for 500 s, seeing the same features the whole time.
+TEST(GoToPose, ALostRobotStandsThenTurnsInPlace) {
+  const BallModel ball;
+  const GameState game;
+  const FallState fall;
+  const MotionInfo motion;
+  const BehaviorCommand command;
+  behavior::GoToPose::Params params;
+  params.lostTurnAfter = 6;
+  params.lostTurnSpeed = 0.4;
+  behavior::GoToPose goTo(params);
+  RobotPose pose;
+  pose.pose = Pose2(-2, -1, 2.4);
+  const Pose2 target(-4.5, 0, 0);
+  auto at = [&](double t, bool valid) {
+    pose.valid = valid;
+    const behavior::BehaviorInput in{t, pose, ball, game, fall, motion, command};
+    MotionRequest r;
+    goTo.run(in, target, r);
+    return r;
+  };
+  MotionRequest r = at(0, true);
+  EXPECT_EQ(r.motion, MotionType::WalkTo);
+  r = at(1, false);  // lost at 1 s
+  EXPECT_EQ(r.motion, MotionType::Stand);
+  r = at(6.9, false);
+  EXPECT_EQ(r.motion, MotionType::Stand);
+  r = at(7.0, false);
+  EXPECT_EQ(r.motion, MotionType::Walk);
+  EXPECT_EQ(r.walkSpeed.x, 0);
+  EXPECT_EQ(r.walkSpeed.y, 0);
+  EXPECT_NEAR(r.walkSpeed.theta, 0.4, 1e-12);
+  r = at(30, false);
+  EXPECT_EQ(r.motion, MotionType::Walk);
+  r = at(31, true);  // found again: to the target
+  EXPECT_EQ(r.motion, MotionType::WalkTo);
+  r = at(32, false);  // lost anew: the wait starts over
+  EXPECT_EQ(r.motion, MotionType::Stand);
+  r = at(37.5, false);
+  EXPECT_EQ(r.motion, MotionType::Stand);
+  r = at(38.1, false);
+  EXPECT_EQ(r.motion, MotionType::Walk);
+  // lostTurnAfter 0: it stands however long it is lost.
+  params.lostTurnAfter = 0;
+  behavior::GoToPose standing(params);
+  pose.valid = false;
+  MotionRequest s;
+  for (double t = 0; t < 60; t += 1) {
+    const behavior::BehaviorInput in{t, pose, ball, game, fall, motion, command};
+    standing.run(in, target, s);
+  }
+  EXPECT_EQ(s.motion, MotionType::Stand);
+}
+
 TEST(ChallengeTasks, TheBallSentenceInMillimetres) {
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(1.2345, -0.0004)), "The ball is at: 1235 0");
   EXPECT_EQ(behavior::ballReport(Eigen::Vector2d(-0.12, 2.7)), "The ball is at: -120 2700");

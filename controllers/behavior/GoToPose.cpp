@@ -6,13 +6,19 @@ namespace nao::behavior {
 
 bool GoToPose::run(const BehaviorInput& in, const Pose2& target, MotionRequest& request) {
   if (!in.pose.valid) {
-    // Lost (or not yet localized): stand and let the head find the field.
+    // Lost (or not yet localized): stand and let the head find the field; lost for long, turn.
+    if (lostSince_ < 0) lostSince_ = in.time;
     machine_.go(State::WaitForPose, in.time);
     haveTarget_ = false;
     reachedSince_ = -1;
     request = MotionRequest{};
+    if (params_.lostTurnAfter > 0 && in.time - lostSince_ >= params_.lostTurnAfter) {
+      request.motion = MotionType::Walk;
+      request.walkSpeed = Pose2(0, 0, params_.lostTurnSpeed);
+    }
     return false;
   }
+  lostSince_ = -1;
   // The target as the estimate places it in the odometry frame.
   const Pose2 odometryTarget = in.pose.odometry * (in.pose.pose.inverse() * target);
   const Pose2 toTarget = in.pose.pose.inverse() * target;

@@ -6,7 +6,7 @@
 // jitter must not keep the robot stepping). The walk stops within its own tolerance of the
 // odometry target; when it stands there while the estimate still says "not arrived", the target
 // goes out again after nudgeAfter (a fresh id: the walk steps once more). Until the pose is
-// valid the robot stands.
+// valid the robot stands, and turns in place once it has been lost for lostTurnAfter.
 #include "controllers/behavior/BehaviorInput.h"
 #include "controllers/behavior/StateMachine.h"
 #include "representations/behavior/MotionRequest.h"
@@ -23,6 +23,11 @@ class GoToPose {
     double arrivedDistance = 0.05;    // m: arrived by the estimate ...
     double arrivedAngle = 0.06;       // rad
     double nudgeAfter = 1.0;          // s the walk has stood at its target while the estimate says not arrived: send it again
+    // Lost this long (the pose not valid), the robot turns in place at lostTurnSpeed while the
+    // head sweeps: standing, it sees the same features that did not settle the estimate, for as
+    // long as it stands (a challenge robot stood lost for 500 s). 0: it stands.
+    double lostTurnAfter = 6.0;       // s
+    double lostTurnSpeed = 0.4;       // rad/s
   };
   enum class State { WaitForPose, Walk, Arrived };
 
@@ -46,6 +51,7 @@ class GoToPose {
   Pose2 odometryTarget_;
   int targetId_ = 0;
   double reachedSince_ = -1;  // s: since when the walk reports its target reached (-1: it does not)
+  double lostSince_ = -1;     // s: since when the pose is not valid (-1: it is)
 };
 
 template <class V>
@@ -57,6 +63,8 @@ void describe(V& v, GoToPose::Params& p) {
   v("arrivedDistance", p.arrivedDistance, 0.0, 1.0);
   v("arrivedAngle", p.arrivedAngle, 0.0, 1.0);
   v("nudgeAfter", p.nudgeAfter, 0.1, 60.0);
+  v("lostTurnAfter", p.lostTurnAfter, 0.0, 600.0);
+  v("lostTurnSpeed", p.lostTurnSpeed, 0.0, 1.5);
 }
 
 }  // namespace nao::behavior
