@@ -163,6 +163,7 @@ int calibrateFromLog(const CalibrateOptions& options) {
     nlohmann::json view = {{"view", v.viewId}, {"camera", cameraName(v.camera)}, {"accepted", v.accepted}, {"reason", v.reason},
                            {"live_accepted", v.liveAccepted}, {"live_reason", v.liveReason}};
     if (v.accepted) {
+      view["source"] = v.source;
       if (const auto it = residualsOf.find(sample); it != residualsOf.end())
         view["residuals"] = {{"angle1_deg", it->second->angle1Deg}, {"angle2_deg", it->second->angle2Deg},
                              {"parallel_deg", it->second->parallelDeg}, {"depth_m", it->second->depthErrorM}};

@@ -73,6 +73,7 @@ CalibrationReplay replayCalibrationLog(const calibration::CalibrationLog& log, c
     v.camera = r.image.camera;
     v.accepted = status.last.viewId == r.viewId && status.last.accepted;
     v.reason = status.last.viewId == r.viewId ? status.last.reason : "not judged: " + status.last.reason;
+    if (v.accepted) v.source = status.last.source;
     v.liveAccepted = r.accepted;
     v.liveReason = r.reason;
     replay.views.push_back(v);

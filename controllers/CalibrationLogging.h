@@ -36,6 +36,7 @@ struct ReplayedView {
   CameraId camera = CameraId::Top;
   bool accepted = false, liveAccepted = false;
   std::string reason, liveReason;
+  std::string source;  // where an accepted sample's segments came from (ExtractionResult::source)
 };
 
 struct CalibrationReplay {
