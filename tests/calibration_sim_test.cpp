@@ -199,6 +199,19 @@ TEST(CalibrateCommand, EstimatesPicturesStoreAndSameSeedSameResult) {
       readJson(dataPath("config/parameters/Calibrator.json")).at("lines").get<std::string>();
   EXPECT_EQ(a["lines"], configLines);
   EXPECT_EQ(fromLog["lines"], configLines);
+  // Each accepted view names its segments' source; each view the solve used has its residuals
+  // (the right angles within a degree, the depth within the acceptance's 3 cm).
+  int withResiduals = 0;
+  for (const auto& v : fromLog["views"]) {
+    if (!v["accepted"].get<bool>()) continue;
+    EXPECT_FALSE(v["source"].get<std::string>().empty()) << v.dump();
+    if (!v.contains("residuals")) continue;
+    ++withResiduals;
+    EXPECT_LT(std::abs(v["residuals"]["angle1_deg"].get<double>()), 1.0) << v.dump();
+    EXPECT_LT(std::abs(v["residuals"]["angle2_deg"].get<double>()), 1.0) << v.dump();
+    EXPECT_LT(std::abs(v["residuals"]["depth_m"].get<double>()), 0.03) << v.dump();
+  }
+  EXPECT_EQ(withResiduals, fromLog["samples_used"].get<int>());
   EXPECT_TRUE(fromLog["accepted"].get<bool>());
   for (const char* name : CameraCalibration::kNames)
     EXPECT_NEAR(fromLog["estimated_deg"][name].get<double>(), a["estimated_deg"][name].get<double>(), 1e-9) << name;
