@@ -143,12 +143,12 @@ int calibrateFromLog(const CalibrateOptions& options) {
   ModuleContext context;
   context.configDir = RobotProgramConfig::defaultConfigDir();
   context.headId = log.headId;
-  context.params["Calibrator"] = calibratorParams(options);
+  const modules::Calibrator::Params calibrator = calibratorParams(options);
+  const std::string& solver = calibrator.solver;
+  context.params["Calibrator"] = calibrator;
   context.params[modules::kFieldParams] = calibrationFieldFrom(options.common);
   DebugSink debug(options.debug);
   context.debug = debug.channels();
-  const modules::Calibrator::Params calibrator = calibratorParams(options);
-  const std::string& solver = calibrator.solver;
   const CalibrationReplay replay = replayCalibrationLog(log, context);
   const CalibrationStatus& s = replay.status;
   nlohmann::json views = nlohmann::json::array();
